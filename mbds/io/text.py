@@ -1,0 +1,136 @@
+"""Lines, comments and numbers of MBDS text files.
+
+Every MBDS file is line-oriented text. ``%`` starts a comment that runs to the end of the line,
+except in the block directives that begin with ``%%`` (``%%data``, ``%%%new%%%``, ...).
+Numbers follow the model's ``decimalSeparator`` (``.`` or ``,``) and may use Mathematica's
+exponent form ``1.5*^-7``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from mbds.errors import ModelError
+
+QUOTES = "`'\u2018\u2019"
+"""Characters accepted as context quotes (backquote, apostrophe and their typographic forms)."""
+
+
+@dataclass(frozen=True)
+class Line:
+    """One significant line of a file: its 1-based number and its text without comment."""
+
+    number: int
+    text: str
+
+
+def read_text(path: str | Path) -> str:
+    """The text of a file, or a :class:`ModelError` naming it when it cannot be read."""
+    try:
+        raw = Path(path).read_bytes()
+    except FileNotFoundError:
+        raise ModelError("file not found", path) from None
+    except IsADirectoryError:
+        raise ModelError("is a directory, expected a file", path) from None
+    except OSError as exc:
+        raise ModelError(f"cannot read file: {exc.strerror}", path) from None
+    if raw.startswith(b"\xef\xbb\xbf"):
+        raw = raw[3:]
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")
+
+
+def strip_comment(text: str) -> str:
+    """``text`` without its ``%`` comment; lines starting with ``%%`` are directives and kept."""
+    stripped = text.strip()
+    if stripped.startswith("%%"):
+        directive, _, rest = stripped.partition(" ")
+        return f"{directive} {strip_comment(rest)}".strip()
+    cut = text.find("%")
+    return (text if cut < 0 else text[:cut]).strip()
+
+
+def significant_lines(text: str) -> list[Line]:
+    """The non-empty lines of ``text`` after comments are removed, with their numbers."""
+    lines = []
+    for number, raw in enumerate(text.splitlines(), start=1):
+        if "\x00" in raw:
+            raise ModelError("binary data (NUL character) in a text file", None, number)
+        content = strip_comment(raw)
+        if content:
+            lines.append(Line(number, content))
+    return lines
+
+
+def is_directive(line: Line, name: str) -> bool:
+    """Whether ``line`` is the block directive ``name`` (``%%data``, ``%%J``, ...)."""
+    return line.text.split()[0] == name if line.text else False
+
+
+_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+|\*\^[+-]?\d+)?")
+
+
+def parse_number(text: str, file: str | Path | None, line: int | None, separator: str = ".") -> float:
+    """A real number, with ``separator`` as decimal mark and optional ``*^`` exponent."""
+    token = text.strip()
+    if separator == ",":
+        if "." in token:
+            raise ModelError(f"'{token}' uses '.' but decimalSeparator is ','", file, line)
+        token = token.replace(",", ".")
+    if not _NUMBER.fullmatch(token):
+        raise ModelError(f"'{text.strip()}' is not a number", file, line)
+    value = float(token.replace("*^", "e"))
+    if not math.isfinite(value):
+        raise ModelError(f"'{text.strip()}' is not a finite number", file, line)
+    return value
+
+
+def parse_flag(text: str, file: str | Path | None, line: int | None) -> bool:
+    """A boolean written as ``1``/``0`` (also ``true``/``false``, ``T``/``F``)."""
+    token = text.strip().lower()
+    if token in ("1", "true", "t", "yes"):
+        return True
+    if token in ("0", "false", "f", "no", ""):
+        return False
+    raise ModelError(f"'{text.strip()}' is not a flag (use 1 for true, 0 for false)", file, line)
+
+
+def parse_integer(text: str, file: str | Path | None, line: int | None) -> int:
+    """A whole number (``MaxInt`` is the largest 32-bit integer, as in the original program)."""
+    token = text.strip()
+    if token.lower() == "maxint":
+        return MAXINT
+    if not re.fullmatch(r"[+-]?\d+", token):
+        raise ModelError(f"'{token}' is not a whole number", file, line)
+    return int(token)
+
+
+MAXINT = 2**31 - 1
+
+
+def format_number(value: float, separator: str = ".") -> str:
+    """The shortest text that reads back as exactly ``value``."""
+    text = repr(float(value))
+    if text.endswith(".0") and "e" not in text:
+        text = text[:-2]
+    return text.replace(".", ",") if separator == "," else text
+
+
+def write_atomic(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file and a rename (never half-written)."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,130 @@
+"""World files (``.wld``): simulation settings, file names and the list of bodies."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mbds.errors import ModelError, warn
+from mbds.io.ini import Located, find_section, format_settings, parse_ini, read_settings, setting
+from mbds.io.text import significant_lines
+
+
+@dataclass
+class WorldSettings:
+    """The ``[main]`` section of a world file, with the manual's defaults (units: s, m)."""
+
+    decimal_separator: str = setting("decimalSeparator", "text", ".")
+    working_directory: str = setting("workingDirectory", "text", "current")
+    number_of_coordinates: int = setting(
+        "numberOfGeneralizedCoordinates", "integer", 1, "numberOfGeneralizedCoodinates"
+    )
+    lcp_pivot_tolerance_min: float = setting("LCPPivotToleranceMin", "number", 1e-14)
+    lcp_pivot_tolerance_max: float = setting("LCPPivotToleranceMax", "number", 1e-10)
+    lcp_lexico_zero_tolerance: float = setting("LCPLexicoZeroTolerance", "number", 1e-8)
+    log_lcp_unbounded_ray: bool = setting("logLCPUnboundedRay", "flag", False)
+    log_lcp_max_iterations: bool = setting("logLCPMaxNumberOfIterations", "flag", False)
+    zero_velocity_tolerance: float = setting("ZeroVelocityTolerance", "number", 1e-18)
+    try_to_solve_by_going_back: bool = setting("TryToSolveByGoingBack", "flag", False)
+    minimum_timestep: float = setting("minimumTimestep", "number", 1e-12)
+    maximum_timestep: float = setting("maximumTimestep", "number", 1e-5)
+    maximum_penetration: float = setting("maximumPenetration", "number", 1e-6)
+    maximum_displacement_factor: float = setting("maximumDisplacementFactor", "number", 0.5)
+    history_multiple_of_maximum_timestep: float = setting(
+        "writeToHistoryMultipleOfMaximumTimestep", "number", 1.0
+    )
+    history_at_collision: bool = setting("writeToHistoryAtCollision", "flag", False)
+    history_each_timestep: bool = setting("writeToHistoryEachTimeStep", "flag", False)
+    constants_file: str = setting("constantListFile", "text", "current.cns")
+    coordinates_file: str = setting("generalizedCoordinatesFile", "text", "current.gc")
+    dependent_coordinates_file: str = setting("dependentCoordinatesFile", "text", "current.dc")
+    mass_matrix_file: str = setting("massMatrixFile", "text", "current.mmx")
+    h_vector_file: str = setting("hVectorFile", "text", "current.hv")
+    mechanical_energy_file: str = setting("mechanicalEnergyFile", "text", "current.me")
+    contact_properties_file: str = setting("contactPropertiesFile", "text", "current.cop")
+    watches_file: str = setting("watchesFile", "text", "current.wtc")
+    break_time: Located = setting("breakTime", "expression", Located("1"))
+
+
+@dataclass
+class WorldFile:
+    """A world file: settings and the body files in the order of ``[bodies]``."""
+
+    settings: WorldSettings = field(default_factory=WorldSettings)
+    bodies: list[Located] = field(default_factory=list)
+    path: Path | None = field(default=None, compare=False)
+
+    @property
+    def directory(self) -> Path:
+        """The working directory: ``current`` is the world file's folder."""
+        base = self.path.parent if self.path else Path.cwd()
+        wd = self.settings.working_directory.strip()
+        return base if wd.lower() in ("current", "") else (base / wd)
+
+    def resolve(self, name: str) -> Path:
+        """A model file name with the ``current`` token replaced by the world file's stem."""
+        stem = self.path.stem if self.path else "model"
+        name = name.strip()
+        if name.lower().startswith("current."):
+            name = stem + name[len("current") :]
+        return self.directory / name
+
+
+def decimal_separator_of(text: str) -> str:
+    """The ``decimalSeparator`` a world text declares (``.`` when absent)."""
+    for line in significant_lines(text):
+        key, sep, value = line.text.partition("=")
+        if sep and key.strip().lower() == "decimalseparator":
+            return value.strip() or "."
+    return "."
+
+
+def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
+    """A :class:`WorldFile` from the text of a ``.wld`` file."""
+    separator = decimal_separator_of(text)
+    if separator not in (".", ","):
+        raise ModelError(f"decimalSeparator must be '.' or ',', not '{separator}'", path)
+    sections = parse_ini(text, path)
+    for s in sections:
+        if s.name.lower() not in ("main", "bodies"):
+            warn(f"unknown section [{s.name}] (ignored)", path, s.line)
+    main = find_section(sections, "main")
+    if main is None:
+        raise ModelError("no [main] section", path, 1)
+    settings = read_settings(WorldSettings, main, path, separator)
+    if settings.number_of_coordinates < 0:
+        raise ModelError("numberOfGeneralizedCoordinates must not be negative", path)
+    for name in ("minimum_timestep", "maximum_timestep", "maximum_penetration"):
+        if getattr(settings, name) <= 0:
+            raise ModelError(f"{_key(name)} must be positive", path, _line_of(main, _key(name)))
+    if settings.minimum_timestep > settings.maximum_timestep:
+        raise ModelError("minimumTimestep is larger than maximumTimestep", path, _line_of(main, "minimumTimestep"))
+    if settings.lcp_pivot_tolerance_min > settings.lcp_pivot_tolerance_max:
+        raise ModelError(
+            "LCPPivotToleranceMin is larger than LCPPivotToleranceMax", path, _line_of(main, "LCPPivotToleranceMin")
+        )
+    bodies_section = find_section(sections, "bodies")
+    bodies = [Located(e.value, e.line) for e in bodies_section.entries] if bodies_section else []
+    for e, b in zip(bodies_section.entries if bodies_section else [], bodies):
+        if not b.text:
+            raise ModelError(f"'{e.key}' names no body file", path, e.line)
+    return WorldFile(settings, bodies, Path(path) if path else None)
+
+
+def _key(field_name: str) -> str:
+    return WorldSettings.__dataclass_fields__[field_name].metadata["key"]
+
+
+def _line_of(section, key: str) -> int | None:
+    for entry in section.entries:
+        if entry.key.lower() == key.lower():
+            return entry.line
+    return None
+
+
+def format_world(world: WorldFile) -> str:
+    """The text of a ``.wld`` file."""
+    sep = world.settings.decimal_separator
+    lines = ["[main]", *format_settings(world.settings, sep), "[bodies]"]
+    lines += [f"body{i} = {b.text}" for i, b in enumerate(world.bodies, start=1)]
+    return "\n".join(lines) + "\n"
