@@ -1,0 +1,22 @@
+[main]
+name = wall
+RGBColor = 0.3 0.3 0.3
+shapeType = extrusionSolid
+shapeFile = wall.exs
+density = 7850
+thickness = 0.01
+correctOrigin = 0
+[startPosition]
+x = 0
+y = 0
+z = 0
+Rx = 0
+Ry = 0
+Rz = 0
+[startVelocity]
+x = 0
+y = 0
+z = 0
+Rx = 0
+Ry = 0
+Rz = 0

@@ -1,0 +1,51 @@
+"""The ``mbds`` command."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import typer
+from rich.console import Console
+
+from mbds import __version__
+from mbds.cli.errors import reported_errors
+
+app = typer.Typer(
+    help="Planar rigid multibody dynamics with unilateral contacts, impacts, friction and run-in wear.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        print(f"mbds {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version."),
+) -> None:
+    """mbds: simulate MBDS models and run wear campaigns."""
+
+
+@app.command()
+def check(
+    paths: list[Path] = typer.Argument(..., help="Model folders or .wld world files."),
+    compile: bool = typer.Option(True, "--compile/--no-compile", help="Also compile the model's functions."),
+    version: int = typer.Option(0, "--model-version", help="Version whose [body:k] watch sections apply."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Validate models and print a summary of each; exit code 2 on bad input."""
+    from mbds.cli.summary import print_summary
+    from mbds.model.load import load_model
+
+    console = Console() if sys.stdout.isatty() else Console(width=140)
+    with reported_errors(debug):
+        for path in paths:
+            model = load_model(path, version=version, compile=compile)
+            print_summary(model, console)
+            console.print(f"[green]ok[/green] {model.world_path}")

@@ -1,0 +1,200 @@
+"""Contact detection between polygon shapes: vertices of one body against edges of another.
+
+Shapes are closed counter-clockwise polygons in body frames (m); a body's world pose is
+(x, y, Rz) in (m, m, rad). For a vertex P of body V and an edge Q0 -> Q1 of body E, with
+tangent t = (Q1 - Q0) / L and outward normal n = (t_y, -t_x) of E:
+
+- position along the edge xi = t . (P - Q0) / L, a candidate when 0 <= xi <= 1;
+- gap g = n . (P - Q0) (m), negative in penetration; a candidate when -skin_E < g <= margin.
+
+Which vertex-edge directions are tested follows ``resistingPenetration``: a body that resists
+penetration has its edges tested against the other body's vertices (T:T both ways).
+
+Broad phase: for each pair, the axis-aligned boxes of the two shapes are intersected (the edge
+body's box inflated by its skin and the margin); only vertices inside the overlap and edges
+crossing it are kept, and the edges are bucketed along the overlap's longer side, so the cost
+grows with the number of points near the contact, not with the product of the point counts.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mbds.kernel.jit import jit
+
+
+@jit
+def world_points(pose, points, point_start, out):
+    """Body-frame ``points`` (P, 2) of every body moved to the world by ``pose`` (nb, 3)."""
+    for b in range(pose.shape[0]):
+        c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
+        for i in range(point_start[b], point_start[b + 1]):
+            x, y = points[i, 0], points[i, 1]
+            out[i, 0] = pose[b, 0] + c * x - s * y
+            out[i, 1] = pose[b, 1] + s * x + c * y
+
+
+@jit
+def bounding_boxes(world, point_start, out):
+    """Axis-aligned box (xmin, ymin, xmax, ymax) of each body's world points into out (nb, 4)."""
+    for b in range(point_start.shape[0] - 1):
+        out[b, 0] = np.inf
+        out[b, 1] = np.inf
+        out[b, 2] = -np.inf
+        out[b, 3] = -np.inf
+        for i in range(point_start[b], point_start[b + 1]):
+            out[b, 0] = min(out[b, 0], world[i, 0])
+            out[b, 1] = min(out[b, 1], world[i, 1])
+            out[b, 2] = max(out[b, 2], world[i, 0])
+            out[b, 3] = max(out[b, 3], world[i, 1])
+
+
+@jit
+def detect_contacts(
+    world, point_start, boxes, pair_bodies, pair_resisting, skin, margin,
+    c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work,
+):
+    """Find vertex-edge contacts of all pairs; return their count, or -1 if the output
+    arrays (capacity ``c_pair.shape[0]``) are too small.
+
+    world: (P, 2) world points from :func:`world_points`; boxes: (nb, 4) from
+    :func:`bounding_boxes`; pair_bodies: (np, 2); pair_resisting: (np, 2) booleans;
+    skin: (nb,) deepest penetration checked (m); margin: largest positive gap reported (m).
+    Outputs per contact: pair, vertex body and (global) point index, edge body and the global
+    index of the edge's first point, xi, gap (m), outward normal of the edge (2,), vertex
+    position (2,). work: int64 scratch of at least 3 * P + 2050 entries.
+    """
+    count = 0
+    capacity = c_pair.shape[0]
+    for p in range(pair_bodies.shape[0]):
+        for side in range(2):
+            edge_body = pair_bodies[p, side]
+            vertex_body = pair_bodies[p, 1 - side]
+            if not pair_resisting[p, side]:
+                continue
+            count = _pair_contacts(
+                p, vertex_body, edge_body, world, point_start, boxes, skin[edge_body], margin,
+                c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
+                work, count, capacity,
+            )
+            if count < 0:
+                return -1
+    return count
+
+
+@jit
+def _pair_contacts(
+    p, vb, eb, world, point_start, boxes, skin, margin,
+    c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
+    work, count, capacity,
+):
+    reach = skin + margin
+    x0 = max(boxes[vb, 0], boxes[eb, 0] - reach)
+    y0 = max(boxes[vb, 1], boxes[eb, 1] - reach)
+    x1 = min(boxes[vb, 2], boxes[eb, 2] + reach)
+    y1 = min(boxes[vb, 3], boxes[eb, 3] + reach)
+    if x0 > x1 or y0 > y1:
+        return count
+    npts = world.shape[0]
+    vertices = work[:npts]
+    edges = work[npts : 2 * npts]
+    nv = 0
+    for i in range(point_start[vb], point_start[vb + 1] - 1):
+        if x0 <= world[i, 0] <= x1 and y0 <= world[i, 1] <= y1:
+            vertices[nv] = i
+            nv += 1
+    if nv == 0:
+        return count
+    ne = 0
+    for j in range(point_start[eb], point_start[eb + 1] - 1):
+        ex0, ex1 = min(world[j, 0], world[j + 1, 0]), max(world[j, 0], world[j + 1, 0])
+        ey0, ey1 = min(world[j, 1], world[j + 1, 1]), max(world[j, 1], world[j + 1, 1])
+        if ex1 + reach >= x0 and ex0 - reach <= x1 and ey1 + reach >= y0 and ey0 - reach <= y1:
+            edges[ne] = j
+            ne += 1
+    if ne == 0:
+        return count
+    # bucket the edges along the longer side of the overlap box
+    axis = 0 if (x1 - x0) >= (y1 - y0) else 1
+    lo = x0 if axis == 0 else y0
+    span = (x1 - x0) if axis == 0 else (y1 - y0)
+    nb = min(ne, 1024)
+    if span <= 0.0:
+        nb = 1
+    width = span / nb if nb > 1 else 1.0
+    start = work[2 * npts : 2 * npts + nb + 1]
+    members = work[2 * npts + 1025 :]
+    for k in range(nb + 1):
+        start[k] = 0
+    for pass_ in range(2):
+        if pass_ == 1:
+            total = 0
+            for k in range(nb):
+                c = start[k]
+                start[k] = total
+                total += c
+            start[nb] = total
+            if total > members.shape[0]:
+                nb = 1
+                start[0] = 0
+                start[1] = ne
+                for e in range(ne):
+                    members[e] = edges[e]
+                break
+        for e in range(ne):
+            j = edges[e]
+            a = min(world[j, axis], world[j + 1, axis]) - reach
+            b = max(world[j, axis], world[j + 1, axis]) + reach
+            k0 = _bucket(a, lo, width, nb)
+            k1 = _bucket(b, lo, width, nb)
+            for k in range(k0, k1 + 1):
+                if pass_ == 0:
+                    start[k] += 1
+                else:
+                    members[start[k]] = j
+                    start[k] += 1
+        if pass_ == 1:
+            for k in range(nb, 0, -1):
+                start[k] = start[k - 1]
+            start[0] = 0
+    for v in range(nv):
+        i = vertices[v]
+        px, py = world[i, 0], world[i, 1]
+        k = _bucket(world[i, axis], lo, width, nb)
+        for m in range(start[k], start[k + 1]):
+            j = members[m]
+            qx, qy = world[j, 0], world[j, 1]
+            tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
+            length = np.sqrt(tx * tx + ty * ty)
+            tx /= length
+            ty /= length
+            dx, dy = px - qx, py - qy
+            xi = (tx * dx + ty * dy) / length
+            if xi < 0.0 or xi > 1.0:
+                continue
+            gap = ty * dx - tx * dy
+            if gap <= -skin or gap > margin:
+                continue
+            if count >= capacity:
+                return -1
+            c_pair[count] = p
+            c_vertex_body[count] = vb
+            c_vertex[count] = i
+            c_edge_body[count] = eb
+            c_edge[count] = j
+            c_xi[count] = xi
+            c_gap[count] = gap
+            c_normal[count, 0] = ty
+            c_normal[count, 1] = -tx
+            c_point[count, 0] = px
+            c_point[count, 1] = py
+            count += 1
+    return count
+
+
+@jit
+def _bucket(value, lo, width, nb):
+    if nb == 1:
+        return 0
+    k = int((value - lo) / width)
+    return min(max(k, 0), nb - 1)

@@ -1,0 +1,89 @@
+"""The model flattened into the plain arrays the kernel takes (SI units throughout)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from mbds.model.load import Model
+
+
+@dataclass
+class KernelArrays:
+    """Everything model-specific the kernel needs, as numpy arrays.
+
+    Bodies (``nb``): ``binding`` (nb, 3) int64 kinds of x, y, Rz (0 fixed, 1 generalized,
+    2 dependent) and ``binding_index`` (nb, 3) the q or dependent index (-1 when fixed);
+    ``start_pose``/``start_velocity`` (nb, 3); ``carrier`` (nb,) the body a virtual body moves
+    with (-1 if none) and ``offset`` (nb, 3) its pose in the carrier frame; ``mass`` (kg),
+    ``inertia`` (kg m^2), ``displacement_factor``, ``skin`` (m), ``radius`` (m, largest vertex
+    distance from the body origin). Shapes: ``points`` (P, 2) body-frame points of all bodies
+    (closing point included) with ``point_start`` (nb + 1,) offsets.
+    Pairs (``np``): ``pair_bodies`` (np, 2), ``pair_law`` (np,), ``pair_resisting`` (np, 2)
+    booleans, ``pair_temperature`` (np,) initial contact temperature (deg C).
+    Watches (``nw``): ``watch_body`` (nw,), ``watch_absolute`` (nw,), point numbers
+    ``watch_points`` with ``watch_start`` (nw + 1,) offsets.
+    State and parameters: ``q0``, ``qd0`` (n,), ``parameters`` (p,).
+    """
+
+    binding: np.ndarray
+    binding_index: np.ndarray
+    start_pose: np.ndarray
+    start_velocity: np.ndarray
+    carrier: np.ndarray
+    offset: np.ndarray
+    mass: np.ndarray
+    inertia: np.ndarray
+    displacement_factor: np.ndarray
+    skin: np.ndarray
+    radius: np.ndarray
+    points: np.ndarray
+    point_start: np.ndarray
+    pair_bodies: np.ndarray
+    pair_law: np.ndarray
+    pair_resisting: np.ndarray
+    pair_temperature: np.ndarray
+    watch_body: np.ndarray
+    watch_absolute: np.ndarray
+    watch_points: np.ndarray
+    watch_start: np.ndarray
+    q0: np.ndarray
+    qd0: np.ndarray
+    parameters: np.ndarray
+
+    def as_dict(self) -> dict[str, np.ndarray]:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def flatten(model: Model) -> KernelArrays:
+    """The kernel arrays of ``model`` (contiguous, float64 or int64)."""
+    bodies = model.bodies
+    counts = [len(b.points) for b in bodies]
+    watches = model.watches
+    return KernelArrays(
+        binding=np.array([b.binding for b in bodies], dtype=np.int64).reshape(-1, 3),
+        binding_index=np.array([b.binding_index for b in bodies], dtype=np.int64).reshape(-1, 3),
+        start_pose=np.array([b.start_position for b in bodies], dtype=float).reshape(-1, 3),
+        start_velocity=np.array([b.start_velocity for b in bodies], dtype=float).reshape(-1, 3),
+        carrier=np.array([-1 if b.carrier is None else b.carrier for b in bodies], dtype=np.int64),
+        offset=np.array([b.offset for b in bodies], dtype=float).reshape(-1, 3),
+        mass=np.array([b.mass for b in bodies], dtype=float),
+        inertia=np.array([b.inertia for b in bodies], dtype=float),
+        displacement_factor=np.array([b.maximum_displacement_factor for b in bodies], dtype=float),
+        skin=np.array([b.skin_thickness for b in bodies], dtype=float),
+        radius=np.array([np.hypot(b.points[:, 0], b.points[:, 1]).max() for b in bodies], dtype=float),
+        points=np.ascontiguousarray(np.concatenate([b.points for b in bodies]) if bodies else np.zeros((0, 2))),
+        point_start=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
+        pair_bodies=np.array([(p.first, p.second) for p in model.pairs], dtype=np.int64).reshape(-1, 2),
+        pair_law=np.array([p.law for p in model.pairs], dtype=np.int64),
+        pair_resisting=np.array([p.resisting for p in model.pairs], dtype=np.bool_).reshape(-1, 2),
+        pair_temperature=np.array([p.initial_temperature for p in model.pairs], dtype=float),
+        watch_body=np.array([w.body for w in watches], dtype=np.int64),
+        watch_absolute=np.array([w.absolute for w in watches], dtype=np.bool_),
+        watch_points=np.array([p for w in watches for p in w.points], dtype=np.int64),
+        watch_start=np.concatenate([[0], np.cumsum([len(w.points) for w in watches])]).astype(np.int64),
+        q0=model.q0.copy(),
+        qd0=model.qd0.copy(),
+        parameters=model.parameters.values.copy(),
+    )

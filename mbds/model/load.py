@@ -1,0 +1,116 @@
+"""Loading a model: files -> checked, assembled :class:`Model` -> compiled functions."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mbds.errors import ModelError
+from mbds.expr import symbols as S
+from mbds.expr.codegen import CompiledModel, ModelExpressions, compile_model
+from mbds.io.contacts import ContactLaw
+from mbds.io.coordinates import CoordinateName
+from mbds.io.folder import ModelFiles, read_model_files
+from mbds.model.bodies import GENERALIZED, POSE, Body, assemble_bodies
+from mbds.model.contacts import ContactPair, assemble_contacts
+from mbds.model.equations import ExpressionReader, Parameters, gather_expressions
+from mbds.model.watches import Watch, assemble_watches
+
+
+@dataclass
+class Model:
+    """A checked model: bodies, coordinates, contacts, watches, expressions and parameters.
+
+    ``q0``/``qd0`` are the start values of the generalized coordinates (m, rad; m/s, rad/s):
+    a body coordinate starts at its ``.bdy`` start value, a free ``g'`` coordinate at 0.
+    ``break_time`` is in s. ``compiled`` holds the numba functions once :meth:`compile` ran.
+    """
+
+    files: ModelFiles
+    version: int
+    bodies: list[Body]
+    coordinates: list[CoordinateName]
+    dependent: list[CoordinateName]
+    pairs: list[ContactPair]
+    laws: list[ContactLaw]
+    watches: list[Watch]
+    expressions: ModelExpressions
+    parameters: Parameters
+    break_time: float
+    q0: np.ndarray
+    qd0: np.ndarray
+    compiled: CompiledModel | None = field(default=None, repr=False)
+
+    @property
+    def world_path(self) -> Path:
+        return self.files.world.path
+
+    @property
+    def name(self) -> str:
+        return self.files.world.path.stem
+
+    def compile(self, cache_dir: str | Path | None = None) -> CompiledModel:
+        """Compile (or load from the disk cache) the model's numba functions."""
+        if self.compiled is None:
+            self.compiled = compile_model(self.expressions, Path(cache_dir) if cache_dir else None)
+        return self.compiled
+
+
+def load_model(path: str | Path, *, version: int = 0, compile: bool = True, cache_dir=None) -> Model:
+    """Read, check and assemble the model of a folder or ``.wld`` file; compile it unless told
+    not to. ``version`` selects the ``[body:k]`` watch sections. Raises :class:`ModelError`."""
+    files = read_model_files(path)
+    model = assemble_model(files, version)
+    if compile:
+        model.compile(cache_dir)
+    return model
+
+
+def assemble_model(files: ModelFiles, version: int = 0) -> Model:
+    """A :class:`Model` from files already read."""
+    bodies = assemble_bodies(files)
+    pairs, laws = assemble_contacts(files, bodies)
+    expressions, params = gather_expressions(files, bodies, laws)
+    watches = assemble_watches(files, bodies, version)
+    q0, qd0 = _start_state(files, bodies)
+    break_time = _break_time(files, bodies)
+    return Model(
+        files=files,
+        version=version,
+        bodies=bodies,
+        coordinates=list(files.coordinates.coordinates),
+        dependent=[c.coordinate for c in files.dependent.coordinates],
+        pairs=pairs,
+        laws=laws,
+        watches=watches,
+        expressions=expressions,
+        parameters=params,
+        break_time=break_time,
+        q0=q0,
+        qd0=qd0,
+    )
+
+
+def _start_state(files: ModelFiles, bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:
+    n = len(files.coordinates.coordinates)
+    q0, qd0 = np.zeros(n), np.zeros(n)
+    for body in bodies:
+        for axis in range(len(POSE)):
+            if body.binding[axis] == GENERALIZED:
+                k = body.binding_index[axis]
+                q0[k] = body.start_position[axis]
+                qd0[k] = body.start_velocity[axis]
+    return q0, qd0
+
+
+def _break_time(files: ModelFiles, bodies: list[Body]) -> float:
+    item = files.world.settings.break_time
+    expr = ExpressionReader(files, bodies).read(item, files.world.path, constant_only=True)
+    values = {S.constant(name): v for name, v in files.constants.values.items()}
+    value = float(expr.subs(values).evalf())
+    if not np.isfinite(value) or value <= 0:
+        raise ModelError(f"breakTime must be a positive time, is {value}", files.world.path, item.line)
+    return value
+

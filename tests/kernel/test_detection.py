@@ -1,0 +1,96 @@
+"""Vertex-edge contact detection against a brute-force reference."""
+
+import numpy as np
+import pytest
+
+from mbds.kernel.detection import bounding_boxes, detect_contacts, world_points
+
+
+def circle(radius, n, rough=0.0, seed=0):
+    rng = np.random.default_rng(seed)
+    angles = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = radius * (1 + rough * rng.uniform(-1, 1, n))
+    pts = np.column_stack([r * np.cos(angles), r * np.sin(angles)])
+    return np.vstack([pts, pts[:1]])
+
+
+def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
+    points = np.vstack(shapes)
+    start = np.concatenate([[0], np.cumsum([len(s) for s in shapes])]).astype(np.int64)
+    world = np.empty_like(points)
+    world_points(pose, points, start, world)
+    boxes = np.empty((len(shapes), 4))
+    bounding_boxes(world, start, boxes)
+    out_i = [np.empty(capacity, dtype=np.int64) for _ in range(5)]
+    xi, gap = np.empty(capacity), np.empty(capacity)
+    normal, point = np.empty((capacity, 2)), np.empty((capacity, 2))
+    work = np.empty(3 * len(points) + 2050, dtype=np.int64)
+    count = detect_contacts(
+        world, start, boxes, np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_),
+        np.array(skin, dtype=float), margin, *out_i, xi, gap, normal, point, work,
+    )
+    if count < 0:
+        return None, world, start
+    found = {(int(out_i[2][k]), int(out_i[4][k])): (xi[k], gap[k], normal[k].copy()) for k in range(count)}
+    return found, world, start
+
+
+def brute_force(world, start, vb, eb, skin, margin):
+    found = {}
+    for i in range(start[vb], start[vb + 1] - 1):
+        for j in range(start[eb], start[eb + 1] - 1):
+            q0, q1 = world[j], world[j + 1]
+            t = (q1 - q0) / np.linalg.norm(q1 - q0)
+            xi = t @ (world[i] - q0) / np.linalg.norm(q1 - q0)
+            gap = np.array([t[1], -t[0]]) @ (world[i] - q0)
+            if 0 <= xi <= 1 and -skin < gap <= margin:
+                found[(i, j)] = (xi, gap)
+    return found
+
+
+def test_square_corner_on_floor():
+    floor = np.array([(-1, -0.1), (1, -0.1), (1, 0), (-1, 0), (-1, -0.1)], dtype=float)
+    square = np.array([(-0.05, -0.05), (0.05, -0.05), (0.05, 0.05), (-0.05, 0.05), (-0.05, -0.05)])
+    tilt = 0.1
+    drop = 0.05 * (np.cos(tilt) + np.sin(tilt)) - 1e-6  # lowest corner 1 um into the floor
+    pose = np.array([[0, 0, 0], [0.2, drop, tilt]], dtype=float)
+    found, world, start = detect([floor, square], pose, [(0, 1)], [(True, True)], [1e-3, 1e-3], 0.0)
+    assert len(found) == 1
+    (vertex, edge), (xi, gap, normal) = next(iter(found.items()))
+    assert start[1] <= vertex < start[2] and edge == 2  # floor's top edge runs from point 2 to 3
+    assert gap == pytest.approx(-1e-6, abs=1e-12)
+    assert normal == pytest.approx([0, 1])
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_rough_disks_match_brute_force(seed):
+    a = circle(0.05, 400, rough=0.01, seed=seed)
+    b = circle(0.04, 300, rough=0.01, seed=seed + 10)
+    pose = np.array([[0, 0, 0.3 * seed], [0.0895, 0.002 * seed, -0.2]])
+    skin, margin = 2e-3, 1e-4
+    found, world, start = detect([a, b], pose, [(0, 1)], [(True, True)], [skin, skin], margin)
+    expected = brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin, margin)
+    assert expected, "the test geometry must produce contacts"
+    assert set(found) == set(expected)
+    for key, (xi, gap) in expected.items():
+        assert found[key][0] == pytest.approx(xi, abs=1e-12) and found[key][1] == pytest.approx(gap, abs=1e-15)
+
+
+def test_resisting_flags_select_directions():
+    a, b = circle(0.05, 64), circle(0.05, 64)
+    pose = np.array([[0, 0, 0], [0.0995, 0, 0.05]])
+    both, world, start = detect([a, b], pose, [(0, 1)], [(True, True)], [1e-3, 1e-3], 0.0)
+    first_only, _, _ = detect([a, b], pose, [(0, 1)], [(True, False)], [1e-3, 1e-3], 0.0)
+    assert both and first_only
+    assert all(start[0] <= edge < start[1] for (_, edge) in first_only)  # edges of body 0 only
+    assert set(first_only) < set(both)
+
+
+def test_far_apart_bodies_have_no_contact_and_capacity_overflow_is_reported():
+    a, b = circle(0.05, 64), circle(0.05, 64)
+    far = np.array([[0, 0, 0], [1, 0, 0]], dtype=float)
+    found, _, _ = detect([a, b], far, [(0, 1)], [(True, True)], [1e-3, 1e-3], 0.0)
+    assert found == {}
+    overlapping = np.array([[0, 0, 0], [0.0995, 0, 0.05]])
+    overflow, _, _ = detect([a, b], overlapping, [(0, 1)], [(True, True)], [1e-3, 1e-3], 0.0, capacity=1)
+    assert overflow is None
