@@ -86,7 +86,9 @@ class CompiledModel:
 
 
 def compile_model(expressions: ModelExpressions, cache_dir: Path | None = None) -> CompiledModel:
-    """Generate the model's module, store it in the cache (default :func:`cache.default_cache_dir`) and load it.
+    """Generate the model's module, store it in ``cache_dir`` and load it (compiling or loading from numba's cache).
+
+    ``cache_dir`` defaults to :func:`mbds.expr.cache.default_cache_dir`.
 
     Raises :class:`~mbds.errors.ModelError` if an expression uses something its function does not
     receive (an unknown coordinate or constant, a velocity in the mass matrix, ...).
@@ -111,7 +113,9 @@ def generate_source(expressions: ModelExpressions) -> str:
     printer = NumbaPrinter()
     m = len(r.positions)
     bodies = {
-        "mass_matrix": _assign(printer, [f"out[{i}, {k}]" for i in range(r.n) for k in range(r.n)], sum(r.mass_matrix, [])),
+        "mass_matrix": _assign(
+            printer, [f"out[{i}, {k}]" for i in range(r.n) for k in range(r.n)], [e for row in r.mass_matrix for e in row]
+        ),
         "h_vector": _assign(printer, [f"out[{i}]" for i in range(r.n)], r.h_vector),
         "dependent_state": _assign(
             printer,
@@ -121,7 +125,7 @@ def generate_source(expressions: ModelExpressions) -> str:
         "dependent_jacobian": _assign(
             printer,
             [f"J[{i}, {k}]" for i in range(m) for k in range(r.n)] + [f"j[{i}]" for i in range(m)],
-            [*sum(r.jacobians, []), *r.jacobian_scalars],
+            [*(e for row in r.jacobians for e in row), *r.jacobian_scalars],
         ),
         "mechanical_energy": [*_assign(printer, ["energy"], [r.mechanical_energy]), "return energy"],
         "contact_law": _contact_law_body(printer, r.contact_laws),
@@ -159,7 +163,9 @@ def _function(name: str, body: list[str]) -> str:
     return "\n".join(lines)
 
 
-def _assign(printer: NumbaPrinter, targets: list[str], exprs: list[sympy.Expr], temporaries: Iterator | None = None) -> list[str]:
+def _assign(
+    printer: NumbaPrinter, targets: list[str], exprs: list[sympy.Expr], temporaries: Iterator | None = None
+) -> list[str]:
     """Lines computing ``targets = exprs`` with common subexpressions computed once."""
     if not exprs:
         return []

@@ -107,7 +107,11 @@ class _Resolver:
             seen.add(item)
 
     def substitute(self, expr: sympy.Expr, where: str, allowed: set[sympy.Symbol], max_order: int = 1) -> sympy.Expr:
-        """Rewrite ``expr`` in code symbols; ModelError if it uses anything outside ``allowed``."""
+        """Rewrite ``expr`` in code symbols; ModelError if it uses anything outside ``allowed``.
+
+        ``where`` names the expression in messages; ``max_order`` is the highest time derivative
+        it may use.
+        """
         expr = sympy.sympify(expr)
         if derivative_order(expr) > max_order:
             worst = max(expr.atoms(sympy.Derivative), key=lambda d: d.derivative_count)
@@ -115,8 +119,8 @@ class _Resolver:
         result = expr.xreplace(self.rules)
         derivatives = result.atoms(sympy.Derivative)
         functions = result.atoms(AppliedUndef) - {d.expr for d in derivatives}
-        symbols = {s for s in result.free_symbols if s not in self.names and s not in (T, TEMP, VREL)}
-        unknown = sorted(display(a) for a in derivatives | functions | symbols)
+        strays = {s for s in result.free_symbols if s not in self.names and s not in (T, TEMP, VREL)}
+        unknown = sorted(display(a) for a in derivatives | functions | strays)
         if unknown:
             raise ModelError(f"{where} uses unknown {', '.join(unknown)} (not a coordinate or parameter of the model)")
         forbidden = sorted(self.names.get(s, str(s)) for s in result.free_symbols - allowed)
@@ -139,7 +143,8 @@ class _Resolver:
                 raise ModelError(f"dependent coordinates depend on each other in a cycle: {cycle}")
             chain.append(d.coordinate)
             kinematics = (d.position, d.velocity, d.acceleration)
-            for other in set().union(*(coordinates_in(sympy.sympify(e)) for e in kinematics)):
+            used = set().union(*(coordinates_in(sympy.sympify(e)) for e in kinematics))
+            for other in sorted(used, key=sympy.default_sort_key):
                 if other in by_coordinate:
                     visit(by_coordinate[other])
             name = display(d.coordinate)
@@ -159,7 +164,43 @@ def resolve(expressions: ModelExpressions) -> Resolved:
     """Substitute coordinates, derivatives and parameters by code symbols and validate the model."""
     x = expressions
     r = _Resolver(x)
-    n = r.n
+    _check_shapes(x, r.n)
+    r.dependent_rules()
+    positions = {T, *r.q, *r.p}
+    states = positions | set(r.qd)
+    contact = {TEMP, VREL, *r.p}
+    sub = r.substitute
+    mass_matrix = [
+        [sub(e, f"mass matrix entry ({i + 1}, {k + 1})", positions, max_order=0) for k, e in enumerate(row)]
+        for i, row in enumerate(x.mass_matrix)
+    ]
+    jacobians = [
+        [sub(e, f"Jacobian entry {k + 1} of {display(d.coordinate)}", states) for k, e in enumerate(d.jacobian)]
+        for d in x.dependent
+    ]
+    energy = x.mechanical_energy if x.mechanical_energy is not None else sympy.Integer(0)
+    laws = [
+        tuple(sub(e, f"{field} of contact properties {k + 1}", contact) for field, e in zip(CONTACT_LAW_FIELDS, law))
+        for k, law in enumerate(x.contact_laws)
+    ]
+    kinematics = [[r.rules[_derivative(d.coordinate, order)] for d in x.dependent] for order in range(3)]
+    return Resolved(
+        n=r.n,
+        n_parameters=len(x.parameters),
+        mass_matrix=mass_matrix,
+        h_vector=[sub(e, f"h vector entry {i + 1}", states) for i, e in enumerate(x.h_vector)],
+        positions=kinematics[0],
+        velocities=kinematics[1],
+        accelerations=kinematics[2],
+        jacobians=jacobians,
+        jacobian_scalars=[sub(d.jacobian_scalar, f"Jacobian scalar of {display(d.coordinate)}", states) for d in x.dependent],
+        mechanical_energy=sub(energy, "mechanical energy", states),
+        contact_laws=laws,
+        names={s: r.names[s] for s in [*r.q, *r.p]},
+    )
+
+
+def _check_shapes(x: ModelExpressions, n: int) -> None:
     if len(x.mass_matrix) != n or any(len(row) != n for row in x.mass_matrix):
         raise ModelError(f"the mass matrix must be {n} x {n} (one row and column per generalized coordinate)")
     if len(x.h_vector) != n:
@@ -167,40 +208,5 @@ def resolve(expressions: ModelExpressions) -> Resolved:
     for d in x.dependent:
         if len(d.jacobian) != n:
             raise ModelError(f"the Jacobian vector of {display(d.coordinate)} must have {n} entries, not {len(d.jacobian)}")
-    r.dependent_rules()
-    positions = set(r.q) | set(r.p) | {T}
-    states = positions | set(r.qd)
-    contact = set(r.p) | {TEMP, VREL}
-
-    mass_matrix = [
-        [r.substitute(e, f"mass matrix entry ({i + 1}, {k + 1})", positions, max_order=0) for k, e in enumerate(row)]
-        for i, row in enumerate(x.mass_matrix)
-    ]
-    h_vector = [r.substitute(e, f"h vector entry {i + 1}", states) for i, e in enumerate(x.h_vector)]
-    kinematics = [[r.rules[_derivative(d.coordinate, order)] for d in x.dependent] for order in range(3)]
-    jacobians = [
-        [r.substitute(e, f"Jacobian entry {k + 1} of {display(d.coordinate)}", states) for k, e in enumerate(d.jacobian)]
-        for d in x.dependent
-    ]
-    scalars = [r.substitute(d.jacobian_scalar, f"Jacobian scalar of {display(d.coordinate)}", states) for d in x.dependent]
-    energy = sympy.Integer(0) if x.mechanical_energy is None else r.substitute(x.mechanical_energy, "mechanical energy", states)
     if any(len(law) != len(CONTACT_LAW_FIELDS) for law in x.contact_laws):
         raise ModelError(f"a contact law has {len(CONTACT_LAW_FIELDS)} expressions: {', '.join(CONTACT_LAW_FIELDS)}")
-    laws = [
-        tuple(r.substitute(e, f"{field} of contact properties {k + 1}", contact) for field, e in zip(CONTACT_LAW_FIELDS, law))
-        for k, law in enumerate(x.contact_laws)
-    ]
-    return Resolved(
-        n=n,
-        n_parameters=len(x.parameters),
-        mass_matrix=mass_matrix,
-        h_vector=h_vector,
-        positions=kinematics[0],
-        velocities=kinematics[1],
-        accelerations=kinematics[2],
-        jacobians=jacobians,
-        jacobian_scalars=scalars,
-        mechanical_energy=energy,
-        contact_laws=laws,
-        names={s: r.names[s] for s in [*r.q, *r.p]},
-    )

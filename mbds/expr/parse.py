@@ -102,7 +102,7 @@ class _Tokenizer:
             start, ch = self.i, text[self.i]
             if _is_digit(ch) or (ch == self.sep and _is_digit(self._peek(1))):
                 out.append(self._number())
-            elif ch.isalpha() or ch == "_" or ch == "$":
+            elif ch.isalpha() or ch in "_$":
                 out.append(self._word())
             elif ch in "+*/^!()[]" or ch in _MINUS:
                 self.i += 1
@@ -178,7 +178,7 @@ class _Tokenizer:
     def _context_name(self, what: str) -> str:
         self.i += 1  # the quote
         start = self.i
-        while self.i < len(self.text) and not (self.text[self.i].isspace() or self.text[self.i] in _PUNCTUATION):
+        while not (self._peek().isspace() or self._peek() in _PUNCTUATION + "\0"):
             self.i += 1
         if start == self.i:
             self.fail(f"missing {what} after the quote", start + 1)
@@ -196,7 +196,8 @@ class _Tokenizer:
                 obj = symbols.mass_property(first, second)
             else:
                 allowed = ", ".join(symbols.COORDINATES + symbols.MASS_PROPERTIES)
-                self.fail(f"unknown body coordinate or property {second!r} in b'{first}'{second} (allowed: {allowed})", start + 1)
+                message = f"unknown body coordinate or property {second!r} in b'{first}'{second} (allowed: {allowed})"
+                self.fail(message, start + 1)
         elif context == "g":
             obj = symbols.generalized(first)
         else:
@@ -263,16 +264,12 @@ class _Parser:
         return result
 
     def _sum(self) -> sympy.Expr:
-        self.depth += 1
-        if self.depth > _MAX_NESTING:
-            self._fail_at("expression nested too deeply", self._next)
         first = self._next
         terms = [self._product()]
         while self._at("+", "-"):
             negate = self._take().text == "-"
             term = self._product()
             terms.append(-term if negate else term)
-        self.depth -= 1
         return self._build(first, sympy.Add, *terms) if len(terms) > 1 else terms[0]
 
     def _starts_operand(self) -> bool:
@@ -292,15 +289,18 @@ class _Parser:
         return self._build(first, sympy.Mul, *factors) if len(factors) > 1 else factors[0]
 
     def _unary(self) -> sympy.Expr:
+        """Every nesting (parentheses, arguments, signs, exponents) passes here: depth is counted once."""
+        self.depth += 1
+        if self.depth > _MAX_NESTING:
+            self._fail_at("expression nested too deeply", self._next)
         if self._at("+", "-"):
-            sign = self._take()
-            self.depth += 1
-            if self.depth > _MAX_NESTING:
-                self._fail_at("expression nested too deeply", sign)
+            negate = self._take().text == "-"
             operand = self._unary()
-            self.depth -= 1
-            return self._build(sign, sympy.Mul, -1, operand) if sign.text == "-" else operand
-        return self._power()
+            result = -operand if negate else operand
+        else:
+            result = self._power()
+        self.depth -= 1
+        return result
 
     def _power(self) -> sympy.Expr:
         token = self._next

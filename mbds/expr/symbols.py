@@ -63,22 +63,20 @@ class Reference:
 
 def reference(obj: sympy.Basic) -> Reference | None:
     """Classify a symbol or an applied coordinate function; None for anything else."""
-    if isinstance(obj, AppliedUndef):
-        parts = obj.func.__name__.split("`")
+    if obj in (T, TEMP, VREL):
+        return Reference("variable", obj.name)
+    if isinstance(obj, AppliedUndef) and obj.args == (T,):
+        context, *names = obj.func.__name__.split("`")
+        if context == "b" and len(names) == 2 and names[1] in COORDINATES:
+            return Reference("coordinate", names[1], names[0])
+        if context == "g" and len(names) == 1:
+            return Reference("generalized", names[0])
     elif isinstance(obj, sympy.Symbol):
-        if obj in (T, TEMP, VREL):
-            return Reference("variable", obj.name)
-        parts = obj.name.split("`")
-    else:
-        return None
-    if len(parts) == 3 and parts[0] == "b" and parts[2] in COORDINATES and isinstance(obj, AppliedUndef):
-        return Reference("coordinate", parts[2], parts[1])
-    if len(parts) == 3 and parts[0] == "b" and parts[2] in MASS_PROPERTIES and isinstance(obj, sympy.Symbol):
-        return Reference("mass_property", parts[2], parts[1])
-    if len(parts) == 2 and parts[0] == "g" and isinstance(obj, AppliedUndef):
-        return Reference("generalized", parts[1])
-    if len(parts) == 2 and parts[0] == "c" and isinstance(obj, sympy.Symbol):
-        return Reference("constant", parts[1])
+        context, *names = obj.name.split("`")
+        if context == "b" and len(names) == 2 and names[1] in MASS_PROPERTIES:
+            return Reference("mass_property", names[1], names[0])
+        if context == "c" and len(names) == 1:
+            return Reference("constant", names[0])
     return None
 
 
