@@ -21,13 +21,15 @@ model's structure alone and its hash names the cached module.
 
 from __future__ import annotations
 
+import functools
+import hashlib
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import sympy
 
-from mbds import __version__
+from mbds import __version__, kernel
 from mbds.expr import cache
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter
@@ -73,6 +75,7 @@ class CompiledModel:
     dependent_jacobian: Callable
     mechanical_energy: Callable
     contact_law: Callable
+    advance: Callable  # the time stepper bound to these functions (compiled on first call)
     n: int  # generalized coordinates
     m: int  # dependent coordinates
     n_contact_laws: int
@@ -98,6 +101,7 @@ def compile_model(expressions: ModelExpressions, cache_dir: Path | None = None) 
     module = cache.load(path)
     return CompiledModel(
         **{name: getattr(module, name) for name in GENERATED_FUNCTIONS},
+        advance=module.advance,
         n=module.N,
         m=module.M,
         n_contact_laws=module.CONTACT_LAWS,
@@ -114,7 +118,9 @@ def generate_source(expressions: ModelExpressions) -> str:
     m = len(r.positions)
     bodies = {
         "mass_matrix": _assign(
-            printer, [f"out[{i}, {k}]" for i in range(r.n) for k in range(r.n)], [e for row in r.mass_matrix for e in row]
+            printer,
+            [f"out[{i}, {k}]" for i in range(r.n) for k in range(r.n)],
+            [e for row in r.mass_matrix for e in row],
         ),
         "h_vector": _assign(printer, [f"out[{i}]" for i in range(r.n)], r.h_vector),
         "dependent_state": _assign(
@@ -146,7 +152,39 @@ def generate_source(expressions: ModelExpressions) -> str:
         f"PARAMETERS = {r.n_parameters}",
     ]
     functions = [_function(name, body) for name, body in bodies.items()]
-    return "\n".join(header) + "\n\n\n" + "\n\n\n".join(functions) + "\n"
+    return "\n".join(header) + "\n\n\n" + "\n\n\n".join([*functions, _driver()]) + "\n"
+
+
+def _driver() -> str:
+    """The model's time stepper: the kernel's stepper bound to this module's functions.
+
+    Compiled on first use and cached with the module. The kernel's source hash is part of the
+    text, so a changed kernel gives a new module instead of stale cached machine code.
+    """
+    functions = ", ".join(GENERATED_FUNCTIONS)
+    return "\n".join(
+        [
+            f"# kernel source {kernel_source_hash()}",
+            "from mbds.kernel.stepper import advance as _advance  # noqa: E402",
+            "",
+            "",
+            "@jit(cache=True)",
+            "def advance(model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):",
+            '    """Integrate this model (see mbds.kernel.stepper.advance)."""',
+            f"    return _advance({functions}, model, settings, until, clock, q, u, rng, point_loss, point_interval,",
+            "                    history, events, ws)",
+        ]
+    )
+
+
+@functools.cache
+def kernel_source_hash() -> str:
+    """Hash of the source files of mbds.kernel (the code a model's stepper is compiled from)."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(kernel.__file__).parent.glob("*.py")):
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:20]
 
 
 def _comment_text(name: str) -> str:

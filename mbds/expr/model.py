@@ -193,7 +193,9 @@ def resolve(expressions: ModelExpressions) -> Resolved:
         velocities=kinematics[1],
         accelerations=kinematics[2],
         jacobians=jacobians,
-        jacobian_scalars=[sub(d.jacobian_scalar, f"Jacobian scalar of {display(d.coordinate)}", states) for d in x.dependent],
+        jacobian_scalars=[
+            sub(d.jacobian_scalar, f"Jacobian scalar of {display(d.coordinate)}", states) for d in x.dependent
+        ],
         mechanical_energy=sub(energy, "mechanical energy", states),
         contact_laws=laws,
         names={s: r.names[s] for s in [*r.q, *r.p]},
@@ -207,6 +209,7 @@ def _check_shapes(x: ModelExpressions, n: int) -> None:
         raise ModelError(f"the h vector must have {n} entries, not {len(x.h_vector)}")
     for d in x.dependent:
         if len(d.jacobian) != n:
-            raise ModelError(f"the Jacobian vector of {display(d.coordinate)} must have {n} entries, not {len(d.jacobian)}")
+            name = display(d.coordinate)
+            raise ModelError(f"the Jacobian vector of {name} must have {n} entries, not {len(d.jacobian)}")
     if any(len(law) != len(CONTACT_LAW_FIELDS) for law in x.contact_laws):
         raise ModelError(f"a contact law has {len(CONTACT_LAW_FIELDS)} expressions: {', '.join(CONTACT_LAW_FIELDS)}")

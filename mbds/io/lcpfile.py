@@ -78,7 +78,7 @@ def read_lcp(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     _sizes(tokens, n)
     if storage == 0:
         _sizes(tokens, n)
-        M = tokens.floats(n * n, "matrix value").reshape((n, n), order="F")
+        M = np.ascontiguousarray(tokens.floats(n * n, "matrix value").reshape((n, n), order="F"))
     else:
         M = _blocks(tokens, n)
     q = tokens.floats(n, "value of q")
@@ -125,7 +125,8 @@ def _blocks(tokens: _Tokens, n: int) -> np.ndarray:
         for block in range(ptr[brow], ptr[brow + 1]):
             number = tokens.int("block number")
             if number != block:
-                raise tokens.error(f"block number {number} found where block {block} was expected", tokens.line)
+                message = f"block number {number} found where block {block} was expected"
+                raise tokens.error(message, tokens.line)
             bc = bcol[block]
             if (brow, bc) in seen:
                 raise tokens.error(f"block ({brow}, {bc}) is given twice", tokens.line)

@@ -59,7 +59,8 @@ def detect_contacts(
 
     world: (P, 2) world points from :func:`world_points`; boxes: (nb, 4) from
     :func:`bounding_boxes`; pair_bodies: (np, 2); pair_resisting: (np, 2) booleans;
-    skin: (nb,) deepest penetration checked (m); margin: largest positive gap reported (m).
+    skin: (nb,) deepest penetration checked (m); margin: (np,) largest positive gap reported
+    per pair (m).
     Outputs per contact: pair, vertex body and (global) point index, edge body and the global
     index of the edge's first point, xi, gap (m), outward normal of the edge (2,), vertex
     position (2,). work: int64 scratch of at least 3 * P + 2050 entries.
@@ -73,7 +74,7 @@ def detect_contacts(
             if not pair_resisting[p, side]:
                 continue
             count = _pair_contacts(
-                p, vertex_body, edge_body, world, point_start, boxes, skin[edge_body], margin,
+                p, vertex_body, edge_body, world, point_start, boxes, skin[edge_body], margin[p],
                 c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
                 work, count, capacity,
             )
@@ -198,3 +199,23 @@ def _bucket(value, lo, width, nb):
         return 0
     k = int((value - lo) / width)
     return min(max(k, 0), nb - 1)
+
+
+@jit
+def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_point):
+    """Recompute xi, gap, normal and point of known vertex-edge contacts at new world points."""
+    for k in range(count):
+        i = c_vertex[k]
+        j = c_edge[k]
+        qx, qy = world[j, 0], world[j, 1]
+        tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
+        length = np.sqrt(tx * tx + ty * ty)
+        tx /= length
+        ty /= length
+        dx, dy = world[i, 0] - qx, world[i, 1] - qy
+        c_xi[k] = (tx * dx + ty * dy) / length
+        c_gap[k] = ty * dx - tx * dy
+        c_normal[k, 0] = ty
+        c_normal[k, 1] = -tx
+        c_point[k, 0] = world[i, 0]
+        c_point[k, 1] = world[i, 1]

@@ -1,42 +1,45 @@
 """Lemke's complementary pivot algorithm with a lexicographic ratio test.
 
 Solves LCP(M, q): find z >= 0 with w = M z + q >= 0 and z.w = 0, for a dense M of shape (n, n)
-(neither symmetry nor the P-property is assumed) and q of shape (n,). Quantities are
-dimensionless to this module: M and q carry whatever units the caller's problem has.
+(neither symmetry nor the P-property is assumed) and q of shape (n,). The module is unit-free:
+M and q carry whatever units the caller's problem has.
 
 Method. The system w - M z - e z0 = q (covering vector e = ones) is pivoted from the basis
-{w}: z0 enters first, then each step the complement of the variable that just left enters,
-until z0 leaves (solved) or the entering column has no positive entry (ray). The explicit
-basis inverse B^-1 is stored compactly: a column j of B^-1 whose w_j is basic is the unit
-vector of w_j's row, so only the k columns with w_j non-basic are kept, transposed
-(``G[s, :]`` is column ``slot_col[s]`` of B^-1). Computing the entering column and updating
-B^-1 both cost 2 n k flops per pivot, in contiguous loops, with no allocation.
+{w}: z0 enters first, replacing the row of the smallest q_i; then the complement of the
+variable that just left enters, until z0 leaves (solved) or the entering column has no
+positive entry (secondary ray). The basis inverse B^-1 is kept explicitly but compactly: a
+column j of B^-1 whose w_j is basic is the unit vector of w_j's row, so only the k columns
+with w_j non-basic are stored, transposed (``G[s, :]`` is column ``slot_col[s]`` of B^-1).
+A pivot updates them (2 n k flops) and forms the next entering column from them (2 n k),
+in contiguous loops, without allocation. q >= 0 is answered with z = 0 and no pivot.
 
-Ratio test. Rows i with d_i > tol_piv * max|d| (d: the entering column) are candidates. Among
-them the lexicographic minimum of the rows (qbar_i, B^-1[i, 0], ..., B^-1[i, n-1]) / d_i is
-chosen, column by column: each column c is scaled by max_i |c_i| (over all rows) and d by
-max|d|; rows whose scaled ratio exceeds the column minimum by at most ``tol_lex`` tie and go
-on to the next column. When the row of z0 is among the rows tied on qbar, z0 leaves (the step
-ends on a solution). This rule keeps every row of [qbar, B^-1] lexicographically positive, so
-no basis repeats: the method cannot cycle.
+Ratio test. Rows i with d_i > tol_piv * max|d| (d: the entering column) are candidates. The
+chosen row is the lexicographic minimum of (qbar_i, B^-1[i, 0], ..., B^-1[i, n-1]) / d_i over
+the candidates, compared column by column: in column c, rows whose ratio exceeds the column's
+minimum ratio by at most tol_lex * max_i |c_i| / max|d| (max over all rows) tie and go on to
+the next column. If the row of z0 ties on qbar, z0 leaves: the step ends on a solution. The
+rule keeps every row of [qbar, B^-1] lexicographically positive, so no basis repeats and the
+method cannot cycle (in exact arithmetic; tol_lex must exceed the rounding noise, see
+docs/lcp.md).
 
 Tolerances (arguments, never globals):
 
-- ``tol_piv_min`` / ``tol_piv_max`` (the ``LCPPivotToleranceMin`` / ``Max`` keys): an entry
-  d_i of the entering column takes part in the ratio test only if d_i > tol_piv * max|d|.
-  The first attempt uses ``tol_piv_min``. If it does not end solved, the tolerance is raised
-  tenfold (capped at ``tol_piv_max``) and the problem is solved again from scratch, but only
-  while the raise can change the path: when every candidate entry ever met exceeded the
-  raised tolerance, the new attempt would repeat the old one exactly, and the old status is
-  final. Small pivots are thus accepted first (exact Lemke) and excluded only when the
-  result is not a verified solution.
-- ``tol_lex`` (the ``LCPLexicoZeroTolerance`` key): the relative size below which a number
-  counts as zero. It decides ties in the lexicographic ratio test (above), and it is the
-  acceptance threshold of the final check: with s_i = |q_i| + sum_j |M_ij| z_j, the end point
-  is a solution only if w_i >= -tol_lex s_i for all i and |w_i| <= tol_lex s_i where z_i > 0.
+- ``tol_piv_min``, ``tol_piv_max`` (``.wld`` keys ``LCPPivotToleranceMin``, ``Max``): the
+  smallest entering-column entry, relative to max|d|, accepted as positive in the ratio test.
+  The first attempt uses ``tol_piv_min``, so small but genuine pivots are taken (exact Lemke).
+  If the attempt does not end on a verified solution (ray, pivot limit, failure), the problem
+  is solved again from scratch with the tolerance raised by decades (capped at
+  ``tol_piv_max``) to the first value at or above rho, the smallest relative candidate entry
+  the attempt met: a smaller raise would exclude no candidate and repeat the same path. When
+  rho exceeds ``tol_piv_max`` the status is final.
+- ``tol_lex`` (``LCPLexicoZeroTolerance``): the relative size below which a difference counts
+  as zero: ties in the ratio test (above) and the acceptance of the end point. With
+  s_i = max|q| + max(z) sum_{j: z_j basic} |M_ij|, the basic point is a solution iff
+  |min(z_i / max(z), w_i / s_i)| <= tol_lex for every i (w recomputed as M z + q).
 
-Pivot count: every basis change, including the first pivot (z0 enters) and the last (z0
-leaves), summed over all tolerance attempts; 0 when q >= 0 (then z = 0, w = q).
+Statuses: SOLVED (also for a ray or pivot limit met on a point that passes the check, e.g.
+a ray with z0 = 0), RAY, MAX_PIVOTS, PIVOT_FAILURE. Pivot count: every basis change, the
+first (z0 enters) and the last (z0 leaves) included, summed over the tolerance attempts.
 """
 
 from __future__ import annotations
@@ -58,7 +61,7 @@ point that fails the solution check."""
 
 @jit
 def lcp_workspace(n):
-    """Workspace of an LCP of size n: (float64 array of n*n + 5n, int64 array of 7n + 1)."""
+    """Workspace of LCPs of size <= n: (float64 array of n*n + 5n, int64 array of 7n + 1)."""
     return np.empty(n * n + 5 * n), np.empty(7 * n + 1, dtype=np.int64)
 
 
@@ -66,9 +69,9 @@ def lcp_workspace(n):
 def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwork):
     """Solve LCP(M, q) into z, w (both (n,), overwritten); return (status, pivots).
 
-    M: (n, n) float64, C-contiguous; q: (n,) float64; max_pivots: limit per tolerance
-    attempt; fwork, iwork: from :func:`lcp_workspace`. z, w are the basic point of the last
-    basis (z clipped at 0, w = M z + q) whatever the status.
+    M: (n, n) float64 (any strides, C order is fastest); q: (n,) float64; max_pivots: limit
+    per tolerance attempt; fwork, iwork: from :func:`lcp_workspace` of any size >= n. z, w are
+    the basic point of the last basis (z clipped at 0, w = M z + q) whatever the status.
     """
     n = q.shape[0]
     if n == 0 or np.min(q) >= 0.0:
@@ -91,10 +94,11 @@ def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwor
     total = 0
     while True:
         status, pivots, rho = _attempt(
-            M, q, tol_piv, tol_lex, max_pivots, G, qbar, d, dnext, col, ratio, basis, where, slot_col, slot_of, rows
+            M, q, tol_piv, tol_lex, max_pivots,
+            G, qbar, d, dnext, col, ratio, basis, where, slot_col, slot_of, rows,
         )
         total += pivots
-        status = _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, status)
+        status = _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, col, status)
         if status == SOLVED or rho > tol_piv_max:
             return status, total
         while tol_piv < rho:  # smaller raises would repeat the same path
@@ -102,7 +106,9 @@ def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwor
 
 
 @jit
-def _attempt(M, q, tol_piv, tol_lex, max_pivots, G, qbar, d, dnext, col, ratio, basis, where, slot_col, slot_of, rows):
+def _attempt(
+    M, q, tol_piv, tol_lex, max_pivots, G, qbar, d, dnext, col, ratio, basis, where, slot_col, slot_of, rows
+):
     """One Lemke path at pivot tolerance tol_piv; return (status, pivots, rho).
 
     rho: the smallest d_i / max|d| of all ratio-test candidates (1 if none). Status SOLVED
@@ -200,29 +206,27 @@ def _attempt(M, q, tol_piv, tol_lex, max_pivots, G, qbar, d, dnext, col, ratio, 
         ncand = 0
         vmin = np.inf
         dmin = dmax
-        for i in range(n):
-            if d[i] > threshold:
-                rows[ncand] = i
-                ratio[ncand] = qbar[i] / d[i]
-                vmin = min(vmin, ratio[ncand])
-                dmin = min(dmin, d[i])
-                ncand += 1
+        scale = 0.0
+        for i in range(n):  # branch-free: rows that are not candidates get ratio inf
+            candidate = d[i] > threshold
+            ncand += candidate
+            ratio[i] = qbar[i] / d[i] if candidate else np.inf
+            vmin = min(vmin, ratio[i])
+            dmin = min(dmin, d[i] if candidate else dmax)
+            scale = max(scale, abs(qbar[i]))
         if ncand == 0:
             return RAY, pivots, rho
         rho = min(rho, dmin / dmax)
         if not np.isfinite(vmin):
             return PIVOT_FAILURE, pivots, rho
-        scale = _absmax(qbar)
         limit = vmin + tol_lex * (scale if scale > 0.0 else 1.0) / dmax
-        ntied = 0
-        r = -1
-        for a in range(ncand):
-            if ratio[a] <= limit:
-                rows[ntied] = rows[a]
-                ntied += 1
-                if rows[a] == where[z0]:
-                    r = rows[a]
-        if r < 0:
+        r = where[z0]
+        if ratio[r] > limit:  # z0 is not among the tied rows
+            ntied = 0
+            for i in range(n):
+                if ratio[i] <= limit:
+                    rows[ntied] = i
+                    ntied += 1
             r = rows[0] if ntied == 1 else _lexbreak(rows, ntied, ratio, d, dmax, G, where, slot_of, tol_lex)
             if r < 0:
                 return PIVOT_FAILURE, pivots, rho
@@ -273,9 +277,10 @@ def _absmax(x):
 
 
 @jit
-def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, status):
+def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
     """Write the basic point of the last basis (z clipped at 0, z0 dropped; w = M z + q).
 
+    msum: (n,) scratch.
     Return SOLVED if it passes the solution check of the module doc (whatever the path's
     status: a ray or a pivot limit met at z0 = 0 still carries a solution); otherwise the
     path's status, or PIVOT_FAILURE if the path claimed a solution.
@@ -292,17 +297,18 @@ def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, status):
             nz += 1
             znorm = max(znorm, z[b - n])
     qnorm = _absmax(q)
+    for i in range(n):
+        w[i] = q[i]
+        msum[i] = 0.0
+    for a in range(nz):  # column by column: independent sums over the rows
+        j = zlist[a]
+        for i in range(n):
+            w[i] += M[i, j] * z[j]
+            msum[i] += abs(M[i, j])
     ok = True
     for i in range(n):
-        wi = q[i]
-        mi = 0.0
-        for a in range(nz):
-            mij = M[i, zlist[a]]
-            wi += mij * z[zlist[a]]
-            mi += abs(mij)
-        w[i] = wi
         zi = z[i] / znorm if znorm > 0.0 else 0.0
-        if not abs(min(zi, wi / (qnorm + znorm * mi))) <= tol_lex:
+        if not abs(min(zi, w[i] / (qnorm + znorm * msum[i]))) <= tol_lex:
             ok = False
     if ok:
         return SOLVED

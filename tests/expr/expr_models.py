@@ -1,4 +1,4 @@
-"""Models for the tests of mbds.expr: a woodpecker-like model (ring y and Rz on a fixed x; bird Rz with dependent x and y)."""
+"""A woodpecker-like test model: ring y and Rz on a fixed x; bird Rz, with bird x and y dependent."""
 
 from __future__ import annotations
 
@@ -20,7 +20,8 @@ DEPENDENT = {
         "-c'lM (Sin[b'ring'Rz[t]] b'ring'Rz''[t] + Cos[b'ring'Rz[t]] b'ring'Rz'[t]^2)"
         " - c'lG (Sin[b'bird'Rz[t]] Derivative[2][b'bird'Rz][t] + Cos[b'bird'Rz[t]] Derivative[1][b'bird'Rz][t]^2)",
         ["0", "-(c'lM*Sin[b'ring'Rz[t]])", "-(c'lG*Sin[b'bird'Rz[t]])"],
-        "-(c'lM*Cos[b'ring'Rz[t]]*Derivative[1][b'ring'Rz][t]^2) - c'lG*Cos[b'bird'Rz[t]]*Derivative[1][b'bird'Rz][t]^2",
+        "-(c'lM*Cos[b'ring'Rz[t]]*Derivative[1][b'ring'Rz][t]^2)"
+        " - c'lG*Cos[b'bird'Rz[t]]*Derivative[1][b'bird'Rz][t]^2",
     ),
     "y": (
         "b'ring'y[t] + c'lM Sin[b'ring'Rz[t]] + c'lG Sin[b'bird'Rz[t]]",

@@ -8,6 +8,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numba
+import pytest
+
 from mbds.expr import cache
 
 # Compiles the test model with the cache directory of $MBDS_CACHE_DIR, calls every function once
@@ -27,8 +30,12 @@ compiled.dependent_state(q, q, q, 0.0, p, np.empty(m), np.empty(m), np.empty(m))
 compiled.dependent_jacobian(q, q, 0.0, p, np.empty((m, n)), np.empty(m))
 compiled.mechanical_energy(q, q, 0.0, p)
 compiled.contact_law(0, 1.0, 1.0, p, np.empty(4))
-stats = {name: [sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())] for name, d in compiled.dispatchers().items()}
-json.dump({"hash": compiled.source_hash, "path": str(compiled.source_path), "stats": stats, "seconds": elapsed}, sys.stdout)
+stats = {
+    name: [sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())]
+    for name, d in compiled.dispatchers().items()
+}
+report = {"hash": compiled.source_hash, "path": str(compiled.source_path), "stats": stats, "seconds": elapsed}
+json.dump(report, sys.stdout)
 """
 
 
@@ -45,6 +52,7 @@ def run_child(cache_dir: Path, hash_seed: str) -> dict:
     return json.loads(done.stdout)
 
 
+@pytest.mark.skipif(numba.config.DISABLE_JIT, reason="numba's disk cache needs the JIT")
 def test_second_process_compiles_nothing(tmp_path):
     cold = run_child(tmp_path, "11")
     warm = run_child(tmp_path, "22")

@@ -42,7 +42,10 @@ MANUAL = [
         "-(c'lG*Cos[b'bird'Rz[t]]*Derivative[1][b'bird'Rz][t]^2)",
         -c("lG") * sympy.cos(rz["bird"]) * D(rz["bird"]) ** 2,
     ),
-    ("c'lG*Cos[b'bird'Rz[t]]+c'lM*Cos[b'ring'Rz[t]]", c("lG") * sympy.cos(rz["bird"]) + c("lM") * sympy.cos(rz["ring"])),
+    (
+        "c'lG*Cos[b'bird'Rz[t]]+c'lM*Cos[b'ring'Rz[t]]",
+        c("lG") * sympy.cos(rz["bird"]) + c("lM") * sympy.cos(rz["ring"]),
+    ),
     ("c'lG + c'lM", c("lG") + c("lM")),
     ("b'mass1'x[t]", body_coordinate("mass1", "x")),
     ("b'mass1'Rz[t]", rz["mass1"]),
@@ -240,7 +243,7 @@ VALID = [text for text, _ in MANUAL] + [
     "Power[Sqrt[c'a], 1.5*^-7] / (Max[1, 2, temp] - Sign[vRel])",
     "Derivative[2][b'r'Rz][t] Floor[c'b] + sqr(b'r'y''[t])",
 ]
-ALPHABET = list("bcgt'`‘\"[]()+-*/^!,;. 0123456789eExyzRJmD_$") + ["Sin", "Derivative", "Log", "Pi", "vRel", "^^", "*^"]
+ALPHABET = [*"bcgt'`‘\"[]()+-*/^!,;. 0123456789eExyzRJmD_$", "Sin", "Derivative", "Log", "Pi", "vRel", "^^", "*^"]
 
 
 def _check(text: str) -> None:
@@ -267,7 +270,11 @@ def test_random_text(text):
 @settings(max_examples=400, deadline=None)
 @given(
     st.sampled_from(VALID),
-    st.lists(st.tuples(st.integers(0, 200), st.sampled_from(["delete", "insert", "replace"]), st.sampled_from(ALPHABET)), min_size=1, max_size=4),
+    st.lists(
+        st.tuples(st.integers(0, 200), st.sampled_from(["delete", "insert", "replace"]), st.sampled_from(ALPHABET)),
+        min_size=1,
+        max_size=4,
+    ),
 )
 def test_mutated_expressions(text, mutations):
     for position, kind, piece in mutations:

@@ -34,7 +34,9 @@ def test_reference():
 
 
 def test_inspection_helpers():
-    expr = parse_expression("c'a b'ring'm Sin[b'ring'Rz[t]] + Derivative[1][g'phi][t]^2 b'bird'Jzz + b'stick'y'[t] temp")
+    expr = parse_expression(
+        "c'a b'ring'm Sin[b'ring'Rz[t]] + Derivative[1][g'phi][t]^2 b'bird'Jzz + b'stick'y'[t] temp"
+    )
     assert s.coordinates_in(expr) == {
         s.body_coordinate("ring", "Rz"),
         s.generalized("phi"),

@@ -27,7 +27,7 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     work = np.empty(3 * len(points) + 2050, dtype=np.int64)
     count = detect_contacts(
         world, start, boxes, np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_),
-        np.array(skin, dtype=float), margin, *out_i, xi, gap, normal, point, work,
+        np.array(skin, dtype=float), np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work,
     )
     if count < 0:
         return None, world, start
