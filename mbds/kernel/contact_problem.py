@@ -29,7 +29,8 @@ def inverse_mass_rows(L, rows, count, Y):
 
 
 @jit
-def _dot(a, b):
+def dot(a, b):
+    """Dot product of two vectors of equal length."""
     s = 0.0
     for k in range(a.shape[0]):
         s += a[k] * b[k]
@@ -62,16 +63,16 @@ def build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_fl
     for i in range(na):
         ci = active[i]
         for j in range(na):
-            A[i, j] = _dot(WN[ci], column[j])
+            A[i, j] = dot(WN[ci], column[j])
         for h in range(nh):
-            A[i, na + h] = _dot(WN[ci], YT[active[hrow[h]]])
+            A[i, na + h] = dot(WN[ci], YT[active[hrow[h]]])
     for g in range(nh):
         cg = active[hrow[g]]
         r = na + g
         for j in range(na):
-            A[r, j] = _dot(WT[cg], column[j])
+            A[r, j] = dot(WT[cg], column[j])
         for h in range(nh):
-            A[r, na + h] = _dot(WT[cg], YT[active[hrow[h]]])
+            A[r, na + h] = dot(WT[cg], YT[active[hrow[h]]])
         A[r, na + nh + g] = 1.0
         r2 = na + nh + g
         A[r2, hrow[g]] = 2.0 * mu[cg]

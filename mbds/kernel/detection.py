@@ -160,20 +160,12 @@ def _pair_contacts(
             start[0] = 0
     for v in range(nv):
         i = vertices[v]
-        px, py = world[i, 0], world[i, 1]
         k = _bucket(world[i, axis], lo, width, nb)
         for m in range(start[k], start[k + 1]):
             j = members[m]
-            qx, qy = world[j, 0], world[j, 1]
-            tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
-            length = np.sqrt(tx * tx + ty * ty)
-            tx /= length
-            ty /= length
-            dx, dy = px - qx, py - qy
-            xi = (tx * dx + ty * dy) / length
+            xi, gap, nx, ny = vertex_edge(world, i, j)
             if xi < 0.0 or xi > 1.0:
                 continue
-            gap = ty * dx - tx * dy
             if gap <= -skin or gap > margin:
                 continue
             if count >= capacity:
@@ -185,10 +177,10 @@ def _pair_contacts(
             c_edge[count] = j
             c_xi[count] = xi
             c_gap[count] = gap
-            c_normal[count, 0] = ty
-            c_normal[count, 1] = -tx
-            c_point[count, 0] = px
-            c_point[count, 1] = py
+            c_normal[count, 0] = nx
+            c_normal[count, 1] = ny
+            c_point[count, 0] = world[i, 0]
+            c_point[count, 1] = world[i, 1]
             count += 1
     return count
 
@@ -202,20 +194,22 @@ def _bucket(value, lo, width, nb):
 
 
 @jit
+def vertex_edge(world, i, j):
+    """(xi, gap, n_x, n_y) of world point i against the edge from point j to point j + 1."""
+    qx, qy = world[j, 0], world[j, 1]
+    tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
+    length = np.sqrt(tx * tx + ty * ty)
+    tx /= length
+    ty /= length
+    dx, dy = world[i, 0] - qx, world[i, 1] - qy
+    return (tx * dx + ty * dy) / length, ty * dx - tx * dy, ty, -tx
+
+
+@jit
 def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_point):
     """Recompute xi, gap, normal and point of known vertex-edge contacts at new world points."""
     for k in range(count):
         i = c_vertex[k]
-        j = c_edge[k]
-        qx, qy = world[j, 0], world[j, 1]
-        tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
-        length = np.sqrt(tx * tx + ty * ty)
-        tx /= length
-        ty /= length
-        dx, dy = world[i, 0] - qx, world[i, 1] - qy
-        c_xi[k] = (tx * dx + ty * dy) / length
-        c_gap[k] = ty * dx - tx * dy
-        c_normal[k, 0] = ty
-        c_normal[k, 1] = -tx
+        c_xi[k], c_gap[k], c_normal[k, 0], c_normal[k, 1] = vertex_edge(world, i, c_edge[k])
         c_point[k, 0] = world[i, 0]
         c_point[k, 1] = world[i, 1]

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mbds.kernel.contact_problem import build_matrix, inverse_mass_rows, tangential_forces
+from mbds.kernel.contact_problem import build_matrix, dot, inverse_mass_rows, tangential_forces
 from mbds.kernel.detection import bounding_boxes, contact_geometry, detect_contacts, world_points
 from mbds.kernel.jit import jit
 from mbds.kernel.kinematics import body_states, contact_kinematics
@@ -309,10 +309,10 @@ def _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n
     nh = build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_flat)
     m = na + 2 * nh
     for a in range(na):
-        bvec[a] = _dot(WN[active[a]], minv_h) + wbar_n[active[a]]
+        bvec[a] = dot(WN[active[a]], minv_h) + wbar_n[active[a]]
     for g in range(nh):
         c = active[hrow[g]]
-        bvec[na + g] = _dot(WT[c], minv_h) + wbar_t[c]
+        bvec[na + g] = dot(WT[c], minv_h) + wbar_t[c]
         bvec[na + nh + g] = 0.0
     ok = _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t)
     for a in range(na):
@@ -370,8 +370,8 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
         st = gd_t[c]
         for b in range(na):
             e = active[b]
-            sn += _dot(WN[c], YN[e]) * lam_ne[e] + _dot(WN[c], YT[e]) * lam_te[e]
-            st += _dot(WT[c], YN[e]) * lam_ne[e] + _dot(WT[c], YT[e]) * lam_te[e]
+            sn += dot(WN[c], YN[e]) * lam_ne[e] + dot(WN[c], YT[e]) * lam_te[e]
+            st += dot(WT[c], YN[e]) * lam_ne[e] + dot(WT[c], YT[e]) * lam_te[e]
         bvec[a] = sn
         bvec[na + a] = st
         bvec[2 * na + a] = 2.0 * mu[c] * lam_ne[c]
@@ -414,16 +414,8 @@ def _apply_impulses(active, na, imp_n, imp_t, YN, YT, u):
 def _relative_velocities(active, na, WN, WT, what_n, what_t, u, gd_n, gd_t):
     for a in range(na):
         c = active[a]
-        gd_n[c] = _dot(WN[c], u) + what_n[c]
-        gd_t[c] = _dot(WT[c], u) + what_t[c]
-
-
-@jit
-def _dot(a, b):
-    s = 0.0
-    for k in range(a.shape[0]):
-        s += a[k] * b[k]
-    return s
+        gd_n[c] = dot(WN[c], u) + what_n[c]
+        gd_t[c] = dot(WT[c], u) + what_t[c]
 
 
 @jit

@@ -47,6 +47,17 @@ def gap(q, t):
     return normal @ (p - q0), normal, p
 
 
+def contact_state(q, qd, t):
+    """WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t of the test contact at (q, qd, t)."""
+    pose, vel, B, bhat, beta = states(q, qd, t)
+    _, normal, point = gap(q, t)
+    out = [np.empty((1, 4)), np.empty((1, 4))] + [np.empty(1) for _ in range(6)]
+    contact_kinematics(
+        1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
+    )
+    return out
+
+
 def test_gap_rates_match_finite_differences():
     q = np.array([0.02, 0.05, 0.3, -0.2])
     qd = np.array([0.5, -1.0, 4.0, -3.0])
@@ -64,13 +75,7 @@ def test_gap_rates_match_finite_differences():
 
     rate = (4 * first(5e-4) - first(1e-3)) / 3
     accel = (4 * second(5e-4) - second(1e-3)) / 3
-    pose, vel, B, bhat, beta = states(q, qd, t)
-    _, normal, point = gap(q, t)
-    out = [np.empty((1, 4)), np.empty((1, 4))] + [np.empty(1) for _ in range(6)]
-    contact_kinematics(
-        1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
-    )
-    WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t = out
+    WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t = contact_state(q, qd, t)
     assert gd_n[0] == pytest.approx(rate, rel=1e-8)
     assert WN[0] @ qd + what_n[0] == pytest.approx(gd_n[0], rel=1e-12)
     assert WN[0] @ qdd + wbar_n[0] == pytest.approx(accel, rel=1e-7)
@@ -84,13 +89,7 @@ def test_tangential_rates_match_finite_differences():
     qd = np.array([0.5, -1.0, 4.0, -3.0])
     qdd = np.array([2.0, -9.81, 30.0, 50.0])
     t = 0.013
-    pose, vel, B, bhat, beta = states(q, qd, t)
-    _, normal, point = gap(q, t)
-    out = [np.empty((1, 4)), np.empty((1, 4))] + [np.empty(1) for _ in range(6)]
-    contact_kinematics(
-        1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
-    )
-    WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t = out
+    WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t = contact_state(q, qd, t)
     def relative_tangent_velocity(tau):
         qq, qqd = q + qd * tau + 0.5 * qdd * tau**2, qd + qdd * tau
         pz, vz = states(qq, qqd, t + tau)[:2]

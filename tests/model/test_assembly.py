@@ -167,46 +167,22 @@ def copy_2mass(tmp_path):
     return folder
 
 
-def _append(path, text):
-    path.write_text(path.read_text() + text)
+BROKEN = [
+    ("2mass.wtc", "[mass1]\ncontactWatch = 0-9\n", r"2mass.wtc:1: contactWatch point 9 of body 'mass1' does not exist"),
+    ("2mass.cop", "[mass1-mass3]\nfriction = 0\n", r"2mass.cop:1: \[mass1-mass3\] names no body 'mass3'"),
+    ("2mass.hv", "0\n-(c'gravity*b'mass1'm) + temp\n0\n", r"2mass.hv:2: 'temp' can only be used in contact-property functions"),
+    ("2mass.mmx", "b'mass1'm*b'mass1'x'[t]\t0\t0\n0\tb'mass1'm\t0\n0\t0\tb'mass1'Jzz\n", r"2mass.mmx:1: the mass matrix cannot use velocities"),
+    ("2mass.gc", "b'mass1'x[t]\nb'mass1'y[t]\n", r"2mass.gc:2: the .gc file lists 2 coordinates but numberOfGeneralizedCoordinates is 3"),
+    ("2mass.hv", "0\n-(c'g*b'mass1'm)\n0\n", r"2mass.hv:2: unknown constant c'g"),
+    ("2mass.hv", "0\n-(c'gravity*b'mass3'm)\n0\n", r"2mass.hv:2: b'mass3'm names no body"),
+    ("2mass.wld", "[main]\nnumberOfGeneralizedCoordinates = 3\nbreakTime = c'gravity - 10\n[bodies]\nbody1 = mass1.bdy\nbody2 = mass2.bdy\n", r"2mass.wld:3: breakTime must be a positive time"),
+]
 
 
-def test_contact_properties_merge_all_then_pair(copy_2mass):
-    (copy_2mass / "2mass.cop").write_text(
-        "[mass2:all]\nfriction = 0.4\nrestitutionNormal = 0.3\n[mass1-mass2]\nrestitutionNormal = 0.9\n"
-    )
-    model = load_model(copy_2mass, compile=False)
-    law = model.laws[model.pairs[0].law]
-    assert (law.friction.text, law.restitution_normal.text) == ("0.4", "0.9")
-
-
-def test_watch_point_out_of_range(copy_2mass):
-    (copy_2mass / "2mass.wtc").write_text("[mass1]\ncontactWatch = 0-9\n")
-    with pytest.raises(ModelError, match=r"2mass.wtc:1: contactWatch point 9 of body 'mass1' does not exist"):
-        load_model(copy_2mass, compile=False)
-
-
-def test_unknown_body_in_contacts(copy_2mass):
-    _append(copy_2mass / "2mass.cop", "[mass1-mass3]\nfriction = 0\n")
-    with pytest.raises(ModelError, match=r"names no body 'mass3'"):
-        load_model(copy_2mass, compile=False)
-
-
-def test_temp_outside_contact_law(copy_2mass):
-    (copy_2mass / "2mass.hv").write_text("0\n-(c'gravity*b'mass1'm) + temp\n0\n")
-    with pytest.raises(ModelError, match=r"2mass.hv:2: 'temp' can only be used in contact-property functions"):
-        load_model(copy_2mass, compile=False)
-
-
-def test_velocity_in_mass_matrix(copy_2mass):
-    (copy_2mass / "2mass.mmx").write_text("b'mass1'm*b'mass1'x'[t]\t0\t0\n0\tb'mass1'm\t0\n0\t0\tb'mass1'Jzz\n")
-    with pytest.raises(ModelError, match=r"2mass.mmx:1: the mass matrix cannot use velocities"):
-        load_model(copy_2mass, compile=False)
-
-
-def test_coordinate_count_mismatch(copy_2mass):
-    (copy_2mass / "2mass.gc").write_text("b'mass1'x[t]\nb'mass1'y[t]\n")
-    with pytest.raises(ModelError, match=r"lists 2 coordinates but numberOfGeneralizedCoordinates is 3"):
+@pytest.mark.parametrize("name, text, message", BROKEN)
+def test_broken_model_is_reported_with_file_and_line(copy_2mass, name, text, message):
+    (copy_2mass / name).write_text(text)
+    with pytest.raises(ModelError, match=message):
         load_model(copy_2mass, compile=False)
 
 
