@@ -335,7 +335,9 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
             imp_n, imp_t, lam_ne, lam_te, gam_n, gam_t, compression_loss, events, t, clock,
             c_vertex, c_edge, c_xi, c_normal, point_loss, point_interval, records_int, records_float, record_count):
     """Compression and expansion LCPs over all closed contacts (Poisson's law, see
-    docs/theory.md); updates u, gd_n and gd_t, records impulses and losses. False on failure."""
+    docs/theory.md); updates u, gd_n and gd_t, records impulses and losses. Returns False when
+    an LCP failed: velocities are then left unchanged (compression failed) or those after
+    compression are kept (expansion failed)."""
     na = 0
     for i in range(nc):
         if c_gap[i] <= 0.0:
@@ -375,12 +377,15 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
         bvec[a] = sn
         bvec[na + a] = st
         bvec[2 * na + a] = 2.0 * mu[c] * lam_ne[c]
-    if not _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t):
-        return False
+    expanded = _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t)
     for a in range(na):
         c = active[a]
-        lam_ne[c] += z[a]
-        lam_te[c] = laws[c, 2] * imp_t[c] + z[na + a] - mu[c] * lam_ne[c]
+        if expanded:
+            lam_ne[c] += z[a]
+            lam_te[c] = laws[c, 2] * imp_t[c] + z[na + a] - mu[c] * lam_ne[c]
+        else:  # keep the compression result: a plastic impact
+            lam_ne[c] = 0.0
+            lam_te[c] = 0.0
     lost = 0.0
     drive = 0.0
     for a in range(na):  # loss of the compression phase; then gam_* <- gamma_C
@@ -399,7 +404,7 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
                 imp_t[c] + lam_te[c], loss, point_loss, point_interval, records_int, records_float, record_count)
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive
-    return True
+    return expanded
 
 
 @jit

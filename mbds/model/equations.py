@@ -137,13 +137,17 @@ def gather_expressions(files: ModelFiles, bodies: list[Body], laws: list[Contact
         for expr, item in zip(row, items):
             _check_order(expr, 0, mmx.path, item.line)
     dependent = [_dependent(c, coordinates, reader, files.dependent.path) for c in files.dependent.coordinates]
-    contact_laws = [
-        tuple(
-            reader.read(x, files.contacts.path, contact=True)
-            for x in (law.friction, law.restitution_normal, law.restitution_tangent, law.parameter_ni)
-        )
-        for law in laws
-    ]
+    contact_laws = []
+    for law in laws:
+        items = (law.friction, law.restitution_normal, law.restitution_tangent, law.parameter_ni)
+        contact_laws.append(tuple(reader.read(x, files.contacts.path, contact=True) for x in items))
+        if not contact_laws[-1][3].is_zero:
+            warn(
+                "parameterNi is not supported: the impact law uses restitutionNormal and "
+                "restitutionTangent only, and treats parameterNi as 0 (see docs/theory.md)",
+                files.contacts.path,
+                law.parameter_ni.line,
+            )
     expressions = ModelExpressions(
         coordinates=coordinates,
         parameters=params.symbols,

@@ -14,11 +14,6 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ["2mass", "wearballs", "woodpecker"]
 
 
-@pytest.fixture(autouse=True)
-def _cache(tmp_path_factory, monkeypatch):
-    monkeypatch.setenv("MBDS_CACHE_DIR", str(tmp_path_factory.getbasetemp() / "mbds-cache"))
-
-
 def run(*args):
     result = CliRunner().invoke(app, list(map(str, args)))
     return result.exit_code, result.stdout, result.stderr

@@ -19,13 +19,8 @@ CAMPAIGNS = ROOT / "campaigns"
 
 
 @pytest.fixture(scope="module")
-def cache_dir(tmp_path_factory):
-    return tmp_path_factory.mktemp("mbds-cache")
-
-
-@pytest.fixture(scope="module")
-def models(cache_dir):
-    return {name: load_model(CAMPAIGNS / name, cache_dir=cache_dir) for name in ("2mass", "wearballs", "woodpecker")}
+def models():
+    return {name: load_model(CAMPAIGNS / name) for name in ("2mass", "wearballs", "woodpecker")}
 
 
 def test_2mass_bodies_and_parameters(models):
@@ -148,11 +143,11 @@ def test_flattened_arrays(models):
         assert value.flags.c_contiguous, name
 
 
-def test_variant_constants_reuse_the_compiled_module(tmp_path, models, cache_dir):
+def test_variant_constants_reuse_the_compiled_module(tmp_path, models):
     folder = tmp_path / "2mass"
     shutil.copytree(CAMPAIGNS / "2mass", folder)
     (folder / "2mass.cns").write_text("c'gravity = 1.62\n")
-    variant = load_model(folder, cache_dir=cache_dir)
+    variant = load_model(folder)
     assert variant.compiled.source_hash == models["2mass"].compiled.source_hash
     assert variant.parameters.values[0] == 1.62
     h = np.empty(3)
@@ -199,7 +194,7 @@ def test_inconsistent_jacobian_is_warned_about(tmp_path):
         load_model(folder, compile=False)
 
 
-def test_dependent_coordinate_from_position_only(tmp_path, cache_dir):
+def test_dependent_coordinate_from_position_only(tmp_path):
     """A .dc block with only a position gets velocity, acceleration, J and j by differentiation."""
     folder = tmp_path / "woodpecker"
     shutil.copytree(CAMPAIGNS / "woodpecker", folder)
@@ -210,8 +205,8 @@ def test_dependent_coordinate_from_position_only(tmp_path, cache_dir):
         body = [line for line in block.strip().splitlines()]
         short += ["%%%new%%%", body[0], "%%definition", body[2]]
     (folder / "woodpecker.dc").write_text("\n".join(short) + "\n")
-    derived = load_model(folder, cache_dir=cache_dir)
-    reference = load_model(CAMPAIGNS / "woodpecker", cache_dir=cache_dir)
+    derived = load_model(folder)
+    reference = load_model(CAMPAIGNS / "woodpecker")
     q, qd, p = np.array([0.0, -0.1, -0.27]), np.array([-0.3, 1.0, -7.0]), full.parameters.values
     out = {}
     for name, model in (("derived", derived), ("reference", reference)):
@@ -220,3 +215,10 @@ def test_dependent_coordinate_from_position_only(tmp_path, cache_dir):
         out[name] = (J, j)
     assert out["derived"][0] == pytest.approx(out["reference"][0], rel=1e-12, abs=1e-15)
     assert out["derived"][1] == pytest.approx(out["reference"][1], rel=1e-12, abs=1e-15)
+
+
+def test_unsupported_parameter_ni_is_warned_about(copy_2mass):
+    cop = copy_2mass / "2mass.cop"
+    cop.write_text(cop.read_text().replace("parameterNi=0", "parameterNi=0.2"))
+    with pytest.warns(UserWarning, match=r"2mass.cop:5: parameterNi is not supported"):
+        load_model(copy_2mass, compile=False)
