@@ -56,7 +56,8 @@ EVENT_LCP_RAY, EVENT_LCP_MAX_PIVOTS, EVENT_LCP_FAILURE, EVENT_OVER_PENETRATION, 
 # columns of per-point accumulators
 IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, POINT_COLUMNS = range(7)
 
-# float columns of the per-contact records kept for going back (integer columns: vertex, edge)
+# float columns of the per-contact records kept for going back (integer columns: vertex,
+# edge start and edge end points; the closing point of a shape is never used: see _edge_end)
 R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = range(8)
 
 REST_FRACTION = 0.01
@@ -155,7 +156,7 @@ def advance(
             solved = _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, settings, tol_lex,
                              active, stick, sign, column, hrow, A_flat, bvec, z, w, fwork, iwork,
                              imp_n, imp_t, lam_n, lam_t, gam_n, gam_t, compression_loss, events, t, clock,
-                             c_vertex, c_edge, c_xi, c_normal, point_loss, point_interval,
+                             c_vertex, c_edge, c_eb, point_start, c_xi, c_normal, point_loss, point_interval,
                              records_int, records_float, record_count)
             clock[IMPACTS] += 1.0
         # --- 5: forces between impacts
@@ -218,7 +219,8 @@ def advance(
             i = active[a]
             power += lam_n[i] * gd_n[i] + lam_t[i] * gd_t[i]
             drive -= lam_n[i] * what_n[i] + lam_t[i] * what_t[i]
-            _record(c_vertex[i], c_edge[i], c_xi[i], c_normal[i, 0], c_normal[i, 1],
+            _record(c_vertex[i], c_edge[i], _edge_end(c_edge[i], c_eb[i], point_start), c_xi[i],
+                    c_normal[i, 0], c_normal[i, 1],
                     0.5 * dt * (lam_n1[i] + lam_n[i]), 0.5 * dt * (lam_t1[i] + lam_t[i]),
                     -0.5 * dt * (lam_n1[i] * gam_n[i] + lam_t1[i] * gam_t[i] + lam_n[i] * gd_n[i] + lam_t[i] * gd_t[i]),
                     point_loss, point_interval, records_int, records_float, record_count)
@@ -333,7 +335,8 @@ def _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n
 def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, settings, tol_lex,
             active, stick, sign, column, hrow, A_flat, bvec, z, w, fwork, iwork,
             imp_n, imp_t, lam_ne, lam_te, gam_n, gam_t, compression_loss, events, t, clock,
-            c_vertex, c_edge, c_xi, c_normal, point_loss, point_interval, records_int, records_float, record_count):
+            c_vertex, c_edge, c_eb, point_start, c_xi, c_normal, point_loss, point_interval,
+            records_int, records_float, record_count):
     """Compression and expansion LCPs over all closed contacts (Poisson's law, see
     docs/theory.md); updates u, gd_n and gd_t, records impulses and losses. Returns False when
     an LCP failed: velocities are then left unchanged (compression failed) or those after
@@ -400,7 +403,8 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
         loss = compression_loss[c] - 0.5 * (lam_ne[c] * (gam_n[c] + gd_n[c]) + lam_te[c] * (gam_t[c] + gd_t[c]))
         lost += loss
         drive -= (imp_n[c] + lam_ne[c]) * what_n[c] + (imp_t[c] + lam_te[c]) * what_t[c]
-        _record(c_vertex[c], c_edge[c], c_xi[c], c_normal[c, 0], c_normal[c, 1], imp_n[c] + lam_ne[c],
+        _record(c_vertex[c], c_edge[c], _edge_end(c_edge[c], c_eb[c], point_start), c_xi[c],
+                c_normal[c, 0], c_normal[c, 1], imp_n[c] + lam_ne[c],
                 imp_t[c] + lam_te[c], loss, point_loss, point_interval, records_int, records_float, record_count)
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive
@@ -436,7 +440,7 @@ def _event(events, t, code, a, b):
 
 
 @jit
-def _record(vertex, edge, xi, nx, ny, imp_n, imp_t, loss, point_loss, point_interval,
+def _record(vertex, edge, edge_end, xi, nx, ny, imp_n, imp_t, loss, point_loss, point_interval,
             records_int, records_float, record_count):
     """Add a contact's impulses (N s) and lost work (J) of this step to its points, and keep
     the record so that going back can take it out again.
@@ -451,6 +455,7 @@ def _record(vertex, edge, xi, nx, ny, imp_n, imp_t, loss, point_loss, point_inte
     if k < records_int.shape[1]:
         records_int[1, k, 0] = vertex
         records_int[1, k, 1] = edge
+        records_int[1, k, 2] = edge_end
         records_float[1, k, R_XI] = xi
         records_float[1, k, R_IMP_N] = imp_n
         records_float[1, k, R_IMP_T] = imp_t
@@ -464,17 +469,24 @@ def _record(vertex, edge, xi, nx, ny, imp_n, imp_t, loss, point_loss, point_inte
         record_count[1] = -1
         record_count[0] = -1
         tmp = np.array([xi, imp_n, imp_t, imp_n * nx - imp_t * ny, imp_n * ny + imp_t * nx, loss, np.arctan2(ny, nx)])
-        _add_record(np.array([vertex, edge]), tmp, 1.0, point_loss, point_interval)
+        _add_record(np.array([vertex, edge, edge_end]), tmp, 1.0, point_loss, point_interval)
+
+
+@jit
+def _edge_end(edge, body, point_start):
+    """The point an edge ends at: the next point, or the body's first for its closing edge."""
+    end = edge + 1
+    return point_start[body] if end == point_start[body + 1] - 1 else end
 
 
 @jit
 def _add_record(ints, floats, scale, point_loss, point_interval):
-    """Add (scale 1) or take out (scale -1) one record from the per-point accumulators."""
-    vertex, edge = ints[0], ints[1]
+    """Add (scale 1) or take out (scale -1) one record (vertex, edge start, edge end points)
+    from the per-point accumulators."""
     xi = floats[R_XI]
-    _add_point(vertex, 1.0 * scale, 1.0, floats, point_loss, point_interval)
-    _add_point(edge, (1.0 - xi) * scale, -1.0, floats, point_loss, point_interval)
-    _add_point(edge + 1, xi * scale, -1.0, floats, point_loss, point_interval)
+    _add_point(ints[0], 1.0 * scale, 1.0, floats, point_loss, point_interval)
+    _add_point(ints[1], (1.0 - xi) * scale, -1.0, floats, point_loss, point_interval)
+    _add_point(ints[2], xi * scale, -1.0, floats, point_loss, point_interval)
 
 
 @jit

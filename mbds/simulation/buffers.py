@@ -78,7 +78,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int) -
         ("imp_n", (c,), f), ("imp_t", (c,), f), ("gam_n", (c,), f), ("gam_t", (c,), f),
         ("compression_loss", (c,), f), ("a1", (n,), f), ("a2", (n,), f), ("q_star", (n,), f), ("u_star", (n,), f),
         ("backup_q", (2, n), f), ("backup_u", (2, n), f), ("backup_clock", (2, K.CLOCK), f),
-        ("records_int", (2, 2 * c, 2), i), ("records_float", (2, 2 * c, K.RECORD_COLUMNS), f),
+        ("records_int", (2, 2 * c, 3), i), ("records_float", (2, 2 * c, K.RECORD_COLUMNS), f),
         ("record_count", (2,), i),
     ]
     lcp = {"fwork": fwork, "iwork": iwork}

@@ -1,0 +1,130 @@
+"""Small MBDS model folders for the physics tests, written as plain model files.
+
+Every model here has one structure: a free rigid body ``body`` (generalized x, y, Rz) above
+a fixed floor ``floor`` whose top face is the line y = 0 (x from -FLOOR_HALF_WIDTH to
++FLOOR_HALF_WIDTH). Gravity is the vector (c'gx, c'gy) (m/s²), the contact has friction c'mu
+and normal restitution c'e. Shapes, masses, start states and world settings are data, not
+code, so every model of this module shares one compiled stepper: tests vary them freely.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+FLOOR_HALF_WIDTH = 5.0
+"""Half-width (m) of the floor's top face."""
+
+FLOOR_DEPTH = 0.1
+"""Thickness (m) of the floor block below y = 0."""
+
+
+def regular_polygon(sides: int, radius: float) -> np.ndarray:
+    """Counter-clockwise regular polygon (sides, 2) of circumradius ``radius`` (m) about the
+    origin, with a vertex straight below the centre."""
+    angles = -0.5 * np.pi + 2.0 * np.pi * np.arange(sides) / sides
+    return radius * np.column_stack([np.cos(angles), np.sin(angles)])
+
+
+def rectangle(width: float, height: float) -> np.ndarray:
+    """Counter-clockwise rectangle (4, 2) of the given sizes (m) centred on the origin."""
+    w, h = 0.5 * width, 0.5 * height
+    return np.array([[-w, -h], [w, -h], [w, h], [-w, h]])
+
+
+@dataclass
+class BodyOnFloor:
+    """A body over the floor: shape (k, 2) in the body frame (m, origin at the centroid), mass
+    (kg), centroidal inertia (kg m²), start pose (x, y, Rz) and velocity (m, rad; m/s, rad/s),
+    gravity (gx, gy) (m/s²), friction coefficient and normal restitution; world settings: time
+    steps (s), maximum penetration (m), history interval (in maximum steps) and break time (s)."""
+
+    shape: np.ndarray
+    mass: float
+    inertia: float
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    gravity: tuple[float, float] = (0.0, -9.81)
+    friction: float = 0.0
+    restitution: float = 0.0
+    dt_min: float = 1e-10
+    dt_max: float = 1e-4
+    max_penetration: float = 1e-7
+    history_every: int = 1
+    history_each_step: bool = False
+    break_time: float = 1.0
+    extra: dict[str, str] = field(default_factory=dict)
+
+    def write(self, folder: Path) -> Path:
+        """Write the model files into ``folder`` (created); return the folder."""
+        folder = Path(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+        files = {
+            "model.wld": _ini({
+                "main": {
+                    "numberOfGeneralizedCoordinates": "3",
+                    "minimumTimestep": _num(self.dt_min),
+                    "maximumTimestep": _num(self.dt_max),
+                    "maximumPenetration": _num(self.max_penetration),
+                    "writeToHistoryMultipleOfMaximumTimestep": str(self.history_every),
+                    "writeToHistoryEachTimeStep": "1" if self.history_each_step else "0",
+                    "breakTime": _num(self.break_time),
+                    **self.extra,
+                },
+                "bodies": {"body1": "body.bdy", "body2": "floor.bdy"},
+            }),
+            "body.bdy": _body("body", self.position, self.velocity, {"mass": self.mass, "InertiaZZ": self.inertia}),
+            "body.exs": _shape(self.shape),
+            "floor.bdy": _body("floor", (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), {"mass": 1.0, "InertiaZZ": 1.0}),
+            "floor.exs": _shape(np.array([[FLOOR_HALF_WIDTH, 0.0], [-FLOOR_HALF_WIDTH, 0.0],
+                                          [-FLOOR_HALF_WIDTH, -FLOOR_DEPTH], [FLOOR_HALF_WIDTH, -FLOOR_DEPTH]])),
+            "model.gc": "b'body'x[t]\nb'body'y[t]\nb'body'Rz[t]\n",
+            "model.mmx": "b'body'm\t0\t0\n0\tb'body'm\t0\n0\t0\tb'body'Jzz\n",
+            "model.hv": "b'body'm*c'gx\nb'body'm*c'gy\n0\n",
+            "model.me": (
+                "(b'body'm*(Derivative[1][b'body'x][t]^2+Derivative[1][b'body'y][t]^2)"
+                "+b'body'Jzz*Derivative[1][b'body'Rz][t]^2)/2"
+                "-b'body'm*(c'gx*b'body'x[t]+c'gy*b'body'y[t])\n"
+            ),
+            "model.cns": (
+                f"c'gx = {_num(self.gravity[0])}\nc'gy = {_num(self.gravity[1])}\n"
+                f"c'mu = {_num(self.friction)}\nc'e = {_num(self.restitution)}\n"
+            ),
+            "model.cop": _ini({"body-floor": {
+                "friction": "c'mu", "restitutionNormal": "c'e", "restitutionTangent": "0", "parameterNi": "0",
+            }}),
+            "model.wtc": _ini({"body": {"contactWatch": "all"}}),
+        }
+        for name, text in files.items():
+            (folder / name).write_text(text)
+        return folder
+
+
+def _num(value: float) -> str:
+    return repr(float(value))
+
+
+def _ini(sections: dict[str, dict[str, str]]) -> str:
+    lines = []
+    for name, entries in sections.items():
+        lines.append(f"[{name}]")
+        lines.extend(f"{key} = {value}" for key, value in entries.items())
+    return "\n".join(lines) + "\n"
+
+
+def _body(name: str, position, velocity, mass_properties: dict[str, float]) -> str:
+    axes = ("x", "y", "Rz")
+    return _ini({
+        "main": {"name": name, "shapeType": "extrusionSolid", "shapeFile": f"{name}.exs", "correctOrigin": "0"},
+        "Mass properties": {key: _num(value) for key, value in mass_properties.items()},
+        "startPosition": {axis: _num(value) for axis, value in zip(axes, position)},
+        "startVelocity": {axis: _num(value) for axis, value in zip(axes, velocity)},
+    })
+
+
+def _shape(points: np.ndarray) -> str:
+    closed = np.vstack([points, points[:1]])
+    rows = "\n".join(f"{x!r} {y!r}" for x, y in closed.tolist())
+    return f"points = {len(closed)}\n%%data\n{rows}\n%%enddata\n"
