@@ -9,10 +9,18 @@ code, so every model of this module shares one compiled stepper: tests vary them
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from mbds.model.load import load_model
+from mbds.simulation.buffers import RunSettings
+from mbds.simulation.run import RunResult, simulate
+
+CAMPAIGNS = Path(__file__).resolve().parents[2] / "campaigns"
+"""The example models."""
 
 FLOOR_HALF_WIDTH = 5.0
 """Half-width (m) of the floor's top face."""
@@ -128,3 +136,18 @@ def _shape(points: np.ndarray) -> str:
     closed = np.vstack([points, points[:1]])
     rows = "\n".join(f"{x!r} {y!r}" for x, y in closed.tolist())
     return f"points = {len(closed)}\n%%data\n{rows}\n%%enddata\n"
+
+
+def run_folder(folder: Path, break_time: float | None = None, **settings) -> RunResult:
+    """Load the model in ``folder`` and run it to ``break_time`` (s; default: the model's);
+    ``settings`` go to :class:`RunSettings` (seed, lexico_range)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # model warnings (an origin off the centroid) are not tested here
+        model = load_model(folder)
+    return simulate(model, RunSettings(break_time=break_time or model.break_time, **settings))
+
+
+def energy_residual(result: RunResult) -> np.ndarray:
+    """E_me(0) - E_me(t) - lost(t) + drive(t) at every sample (J): zero when the mechanical
+    energy, the lost work and the work of rheonomic drivers balance."""
+    return result.energy[0] - result.energy - result.lost + result.drive

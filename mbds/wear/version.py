@@ -1,0 +1,116 @@
+"""Creating the next version of a model: copied files, worn shapes, updated constants.
+
+The next version's folder (``NNN`` + 1 beside the source version) receives a byte-for-byte copy
+of every model file the world file names (comments and layout kept), then the reshaped shape
+files and the updated constants file are written over their copies, and ``wear.nc`` records
+what changed and why. The folder is assembled under a temporary name and renamed at the end,
+so it either appears complete or not at all.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from mbds import __version__
+from mbds.errors import ModelError
+from mbds.io.constants import ConstantsFile, format_constants
+from mbds.io.folder import ModelFiles, read_model_files
+from mbds.io.shape import ShapeFile, format_shape
+from mbds.io.text import write_atomic
+from mbds.wear.plan import WearPlan, plan_wear
+
+WEAR_FILE = "wear.nc"
+
+
+def version_number(folder: Path) -> int:
+    """The version number of a version folder (its three-digit name)."""
+    name = Path(folder).name
+    if len(name) != 3 or not name.isdigit():
+        raise ModelError("a version folder is named with three digits (000, 001, ...)", folder)
+    return int(name)
+
+
+def model_file_paths(files: ModelFiles) -> list[Path]:
+    """Every file of the model that exists: world, bodies, shapes and the other model files."""
+    world = files.world
+    s = world.settings
+    names = [
+        s.constants_file, s.coordinates_file, s.dependent_coordinates_file, s.mass_matrix_file,
+        s.h_vector_file, s.mechanical_energy_file, s.contact_properties_file, s.watches_file,
+    ]
+    paths = [world.path, *(b.path for b in files.bodies), *(sh.path for sh in files.shapes)]
+    paths += [world.resolve(name) for name in names]
+    unique = []
+    for path in paths:
+        if path is not None and Path(path).exists() and Path(path) not in unique:
+            unique.append(Path(path))
+    return unique
+
+
+def create_next_version(folder: str | Path, losses: dict[str, np.ndarray]) -> Path:
+    """Create version N + 1 beside version folder ``folder`` (version N) from the lost work per
+    shape point of version N (``losses[body]``, J); return the new folder."""
+    folder = Path(folder)
+    version = version_number(folder)
+    target = folder.parent / f"{version + 1:03d}"
+    if target.exists():
+        raise ModelError(f"version {version + 1:03d} exists already", target)
+    files = read_model_files(folder)
+    plan = plan_wear(files, losses, version)
+    temporary = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=folder.parent))
+    try:
+        for path in model_file_paths(files):
+            if not path.resolve().is_relative_to(folder.resolve()):
+                raise ModelError("model file outside its version folder (workingDirectory?)", path)
+            destination = temporary / path.relative_to(folder)
+            destination.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(path, destination)
+        separator = files.separator
+        for wear in plan.bodies:
+            shape = next(s for b, s in zip(files.bodies, files.shapes) if b.main.name == wear.body)
+            write_atomic(temporary / shape.path.relative_to(folder), format_shape(ShapeFile(wear.shape), separator))
+        if plan.constants_after != plan.constants_before:
+            cns = files.world.resolve(files.world.settings.constants_file)
+            write_atomic(temporary / cns.relative_to(folder), format_constants(ConstantsFile(plan.constants_after), separator))
+        wear_dataset(plan, files, version).to_netcdf(temporary / WEAR_FILE)
+        os.rename(temporary, target)
+    except BaseException:
+        shutil.rmtree(temporary, ignore_errors=True)
+        raise
+    return target
+
+
+def wear_dataset(plan: WearPlan, files: ModelFiles, version: int) -> xr.Dataset:
+    """What a new version changed: per reshaped body and watched point the loss used (J),
+    displacement (m), direction and old and new coordinates (m, body frame); constants before
+    and after."""
+    data = {}
+    for wear in plan.bodies:
+        old = next(s for b, s in zip(files.bodies, files.shapes) if b.main.name == wear.body).points
+        dim = f"{wear.body}_point"
+        coords = {dim: wear.points}
+        data[f"{wear.body}_loss"] = xr.DataArray(wear.loss, coords, [dim], attrs={"units": "J", "long_name": f"lost work used for reshaping {wear.body}"})
+        data[f"{wear.body}_displacement"] = xr.DataArray(wear.displacement, coords, [dim], attrs={"units": "m", "long_name": f"displacement of the points of {wear.body} along their direction"})
+        for axis, label in enumerate("xy"):
+            data[f"{wear.body}_direction_{label}"] = xr.DataArray(wear.direction[:, axis], coords, [dim], attrs={"units": "1", "long_name": f"reshaping direction, {label} (body frame)"})
+            data[f"{wear.body}_old_{label}"] = xr.DataArray(old[wear.points, axis], coords, [dim], attrs={"units": "m", "long_name": f"{label} before reshaping (body frame)"})
+            data[f"{wear.body}_new_{label}"] = xr.DataArray(wear.shape[wear.points, axis], coords, [dim], attrs={"units": "m", "long_name": f"{label} after reshaping (body frame)"})
+    names = list(plan.constants_after)
+    if names:
+        data["constant_before"] = xr.DataArray([plan.constants_before[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": "constant in the source version"})
+        data["constant_after"] = xr.DataArray([plan.constants_after[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": "constant in the new version"})
+    attrs = {
+        "title": "mbds wear update",
+        "source_version": f"{version:03d}",
+        "new_version": f"{version + 1:03d}",
+        "mbds_version": __version__,
+        "reshaped_bodies": ",".join(w.body for w in plan.bodies),
+        "Conventions": "CF-1.10",
+    }
+    return xr.Dataset(data, attrs=attrs)
