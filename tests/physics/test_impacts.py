@@ -1,0 +1,112 @@
+"""Impacts against closed-form results: bounce heights, energy, the loss of one impact and an
+oblique impact with friction. Gravity is (c'gx, c'gy); see :mod:`tests.physics.models`."""
+
+import numpy as np
+import pytest
+
+from tests.physics.models import BodyOnFloor, energy_residual, rectangle, regular_polygon, run_folder
+
+pytestmark = pytest.mark.physics
+
+G = 9.81  # m/s²
+RADIUS = 0.05  # m, circumradius of the polygon ball
+BALL_MASS = 1.0  # kg
+DROP = 0.2  # m, height of the lowest vertex at the start
+SAFE_FACTOR = {"maximumDisplacementFactor": "2"}  # detection margin wider than one step's travel
+
+
+def ball(e: float, break_time: float, **world) -> BodyOnFloor:
+    """A 64-sided polygon ball, vertex down and without spin, dropped from DROP onto the floor."""
+    shape = regular_polygon(64, RADIUS)
+    return BodyOnFloor(shape, BALL_MASS, 0.5 * BALL_MASS * RADIUS**2, position=(0.0, RADIUS + DROP, 0.0),
+                       restitution=e, break_time=break_time, **world)
+
+
+def apex_heights(result) -> np.ndarray:
+    """Height (m) of the lowest vertex at the top of each flight: y + v²/(2g) - R is constant in
+    free flight, so every sample of a flight gives it; flights are split at upward jumps of v."""
+    y, v = result.q[:, 1], result.u[:, 1]
+    impacts = np.flatnonzero(np.diff(v) > 0.0) + 1
+    heights = []
+    for start, stop in zip(np.r_[0, impacts], np.r_[impacts, len(v)]):
+        flying = y[start:stop] - RADIUS > 1e-5
+        if flying.any():
+            heights.append(np.median((y + 0.5 * v * v / G - RADIUS)[start:stop][flying]))
+    return np.array(heights)
+
+
+@pytest.mark.parametrize("e", [0.8, 0.5])
+def test_bounce_heights_shrink_by_restitution_squared(tmp_path, e):
+    result = run_folder(ball(e, 1.5, extra=SAFE_FACTOR).write(tmp_path))
+    heights = apex_heights(result)
+    assert heights[0] == pytest.approx(DROP, rel=1e-9)
+    ratios = heights[1:] / heights[:-1]
+    relevant = ratios[heights[1:] > 1e-3]  # bounces well above the allowed penetration
+    assert len(relevant) >= 3
+    np.testing.assert_allclose(relevant, e * e, rtol=0.01)
+    assert np.abs(result.q[:, 2]).max() < 1e-6  # a vertex under the centre: no spin
+    assert np.abs(energy_residual(result)).max() < 1e-9 * result.energy[0]
+
+
+def test_elastic_bounces_keep_the_mechanical_energy(tmp_path):
+    result = run_folder(ball(1.0, 4.2, extra=SAFE_FACTOR).write(tmp_path))
+    assert len(apex_heights(result)) >= 11  # ten impacts
+    drift = np.abs(result.energy / result.energy[0] - 1.0)
+    assert drift.max() < 1e-3
+    assert result.lost[-1] == pytest.approx(0.0, abs=1e-6 * result.energy[0])
+
+
+@pytest.mark.xfail(strict=True, reason="contacts are detected within maxPen + f v dt_max only; with "
+                   "maximumDisplacementFactor f < 1 a vertex can cross the skin within one step unseen")
+def test_fast_ball_does_not_pass_the_skin_with_the_default_factor(tmp_path):
+    result = run_folder(ball(0.8, 1.2).write(tmp_path))
+    lowest = result.q[:, 1] - RADIUS
+    assert lowest.min() > -2e-7  # twice maximumPenetration
+
+
+def corner_drop(e: float, tilt: float, speed: float, gap: float = 1e-3, after: float = 2e-3) -> tuple[BodyOnFloor, float]:
+    """A 0.1 m x 0.04 m block, 2 kg, turned by ``tilt`` (rad), moving straight down at ``speed``
+    (m/s) without gravity, its lowest corner ``gap`` (m) above the floor, run ``after`` (s)
+    past the impact. Returns the model and the horizontal lever arm (m) of that corner."""
+    shape = rectangle(0.1, 0.04)
+    c, s = np.cos(tilt), np.sin(tilt)
+    world = shape @ np.array([[c, s], [-s, c]])
+    lowest = world[np.argmin(world[:, 1])]
+    mass, inertia = 2.0, 2.0 * (0.1**2 + 0.04**2) / 12.0
+    model = BodyOnFloor(shape, mass, inertia, position=(0.0, gap - lowest[1], tilt), velocity=(0.0, -speed, 0.0),
+                        gravity=(0.0, 0.0), restitution=e, break_time=gap / speed + after, max_penetration=1e-8,
+                        dt_max=1e-5, history_each_step=True)
+    return model, lowest[0]
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_one_frictionless_impact_loses_half_meff_gamma_squared(tmp_path, e):
+    speed, tilt = 1.5, 0.3
+    model, arm = corner_drop(e, tilt, speed)
+    result = run_folder(model.write(tmp_path))
+    m_eff = 1.0 / (1.0 / model.mass + arm**2 / model.inertia)
+    expected = 0.5 * m_eff * speed**2 * (1.0 - e * e)
+    assert result.lost[-1] == pytest.approx(expected, rel=1e-9, abs=1e-12)
+    # after the impact the corner separates at e times the approach speed
+    vy, omega = result.u[-1, 1], result.u[-1, 2]
+    assert vy + omega * arm == pytest.approx(e * speed, rel=1e-9, abs=1e-9)
+    assert np.abs(energy_residual(result)).max() < 1e-12
+
+
+@pytest.mark.parametrize("tangential", [2.0, 0.2])
+def test_oblique_impact_of_a_flat_block_with_friction(tmp_path, tangential):
+    """Both bottom corners land together: the normal impulse is (1 + e) m v_n in total and the
+    friction impulse at most mu times it; the block slides through the impact when
+    v_t > mu (1 + e) v_n (then v_t drops by that amount), else it ends the impact at rest
+    tangentially. The corners share the load so that the block does not spin."""
+    mu, e, normal = 0.3, 0.5, 1.0
+    model = BodyOnFloor(rectangle(0.1, 0.02), 1.0, (0.1**2 + 0.02**2) / 12.0, position=(0.0, 0.011, 0.0),
+                        velocity=(tangential, -normal, 0.0), gravity=(0.0, 0.0), friction=mu, restitution=e,
+                        break_time=2e-3, max_penetration=1e-8, dt_max=1e-5)
+    result = run_folder(model.write(tmp_path))
+    vx, vy, omega = result.u[-1]
+    assert vy == pytest.approx(e * normal, rel=1e-9)
+    assert vx == pytest.approx(max(tangential - mu * (1.0 + e) * normal, 0.0), abs=1e-9)
+    assert omega == pytest.approx(0.0, abs=1e-9)
+    lost = 0.5 * (tangential**2 + normal**2 - vx**2 - vy**2)
+    assert result.lost[-1] == pytest.approx(lost, rel=1e-9)
