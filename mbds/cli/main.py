@@ -49,3 +49,27 @@ def check(
             model = load_model(path, version=version, compile=compile)
             print_summary(model, console)
             console.print(f"[green]ok[/green] {model.world_path}")
+
+
+@app.command()
+def run(
+    path: Path = typer.Argument(..., help="A version folder (campaigns/2mass/000) or a model folder."),
+    break_time: float = typer.Option(None, "--break-time", help="Length of the run (s); default: breakTime."),
+    start_from: int = typer.Option(None, "--from", help="Start where this version's run ended (e.g. 000)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the randomized lexicographic tolerances."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Run one version of a model and write its outputs into the version folder.
+
+    Exit codes: 0 break time reached, 1 stopped early (maxLinesInLog, state not finite),
+    2 bad input, 130 interrupted by Ctrl-C (outputs written, marked incomplete).
+    """
+    from mbds.cli.run import run_command
+    from mbds.simulation.version_run import RunOptions
+
+    if break_time is not None and not break_time > 0:
+        raise typer.BadParameter("must be a positive time (s)", param_hint="--break-time")
+    console = Console() if sys.stdout.isatty() else Console(width=140)
+    with reported_errors(debug):
+        code = run_command(path, RunOptions(break_time, seed, start_from), console)
+    raise typer.Exit(code)

@@ -53,6 +53,12 @@ class ModelFiles:
     def separator(self) -> str:
         return self.world.settings.decimal_separator
 
+    def paths(self) -> list[Path]:
+        """The files read, world file first (absent optional files left out)."""
+        files = [self.world, *self.bodies, *self.shapes, self.coordinates, self.dependent, self.constants,
+                 self.mass_matrix, self.h_vector, self.energy, self.contacts, self.watches]
+        return [f.path for f in files if f.path is not None]
+
 
 def find_world(path: str | Path) -> Path:
     """The world file of ``path``: the file itself, or the one ``.wld`` file of a folder."""

@@ -123,11 +123,20 @@ def advance(
         if t >= clock[NEXT_SAMPLE] - 1e-12 * max(1.0, abs(t)) or settings[SAMPLE_EACH_STEP] > 0.0:
             if h_count[0] >= history[0].shape[0]:
                 return HISTORY_FULL
+            if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
+                contact_kinematics(nc, c_vb, c_eb, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
+                                   WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t)
+                _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t)
+                if not _dynamics(mass_matrix, h_vector, q, u, t, p, M, L, hv, minv_h, WN, WT, YN, YT, nc):
+                    return NOT_FINITE
+                _contact_forces(nc, c_gap, gd_n, gd_t, settings, settings[LEXICO], active, stick, sign, laws,
+                                WN, WT, YN, YT, minv_h, wbar_n, wbar_t, column, hrow, A_flat, bvec, z, w,
+                                fwork, iwork, lam_n, lam_t, a2, events, t)
             _sample(mechanical_energy, q, u, a2, t, p, clock, point_interval, watch_start, watch_points, history)
             record_count[0] = -1  # no going back past a sample
             record_count[1] = -1
-            while clock[NEXT_SAMPLE] <= t + 1e-12 * max(1.0, abs(t)):
-                clock[NEXT_SAMPLE] += settings[SAMPLE_EVERY]
+            # the next sample time as a multiple of the interval (no drift from repeated sums)
+            clock[NEXT_SAMPLE] = (np.floor(t / settings[SAMPLE_EVERY] + 1e-9) + 1.0) * settings[SAMPLE_EVERY]
         if t >= until - 1e-12 * max(1.0, abs(until)):
             return REACHED
         if events[1][0] + 8 > events[0].shape[0]:
@@ -139,10 +148,7 @@ def advance(
             tol_lex = settings[LEXICO]
         contact_kinematics(nc, c_vb, c_eb, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
                            WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t)
-        for i in range(nc):
-            law_ok = _contact_law(contact_law, pair_law[c_pair[i]], abs(gd_t[i]), pair_temperature[c_pair[i]], p, laws[i])
-            if not law_ok:
-                _event(events, t, EVENT_BAD_LAW, float(c_pair[i]), abs(gd_t[i]))
+        _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t)
         if not _dynamics(mass_matrix, h_vector, q, u, t, p, M, L, hv, minv_h, WN, WT, YN, YT, nc):
             _event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
@@ -160,17 +166,10 @@ def advance(
                              records_int, records_float, record_count)
             clock[IMPACTS] += 1.0
         # --- 5: forces between impacts
-        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
-        na = 0
-        for i in range(nc):
-            if c_gap[i] <= 0.0 and gd_n[i] <= rest:
-                active[na] = i
-                na += 1
-                stick[i] = abs(gd_t[i]) <= rest
-                sign[i] = 1.0 if gd_t[i] > 0.0 else -1.0
-        solved = solved and _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n, wbar_t,
-                                           settings, tol_lex, column, hrow, A_flat, bvec, z, w, fwork, iwork,
-                                           lam_n1, lam_t1, a1, events, t)
+        na, forces_ok = _contact_forces(nc, c_gap, gd_n, gd_t, settings, tol_lex, active, stick, sign, laws,
+                                        WN, WT, YN, YT, minv_h, wbar_n, wbar_t, column, hrow, A_flat, bvec, z, w,
+                                        fwork, iwork, lam_n1, lam_t1, a1, events, t)
+        solved = solved and forces_ok
         if not solved:
             clock[LCP_FAILURES] += 1.0
             if settings[GO_BACK] > 0.0 and record_count[0] >= 0 and backup_clock[0, DT] > settings[DT_MIN] * 1.000001:
@@ -233,6 +232,32 @@ def advance(
         clock[STEPS] += 1.0
         if impacting and settings[SAMPLE_AT_COLLISION] > 0.0:
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
+
+
+@jit(inline="always")
+def _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t):
+    """Friction and restitution coefficients of every contact at its current sliding speed."""
+    for i in range(nc):
+        if not _contact_law(contact_law, pair_law[c_pair[i]], abs(gd_t[i]), pair_temperature[c_pair[i]], p, laws[i]):
+            _event(events, t, EVENT_BAD_LAW, float(c_pair[i]), abs(gd_t[i]))
+
+
+@jit
+def _contact_forces(nc, c_gap, gd_n, gd_t, settings, tol_lex, active, stick, sign, laws, WN, WT, YN, YT, minv_h,
+                    wbar_n, wbar_t, column, hrow, A_flat, bvec, z, w, fwork, iwork, lam_n, lam_t, acc, events, t):
+    """The contacts at rest (closed, not separating faster than the rest velocity), their forces
+    and the accelerations; returns (number of contacts at rest, solved)."""
+    rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+    na = 0
+    for i in range(nc):
+        if c_gap[i] <= 0.0 and gd_n[i] <= rest:
+            active[na] = i
+            na += 1
+            stick[i] = abs(gd_t[i]) <= rest
+            sign[i] = 1.0 if gd_t[i] > 0.0 else -1.0
+    ok = _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n, wbar_t, settings, tol_lex,
+                        column, hrow, A_flat, bvec, z, w, fwork, iwork, lam_n, lam_t, acc, events, t)
+    return na, ok
 
 
 @jit(inline="always")

@@ -22,7 +22,7 @@ class KernelArrays:
     (closing point included) with ``point_start`` (nb + 1,) offsets.
     Pairs (``np``): ``pair_bodies`` (np, 2), ``pair_law`` (np,), ``pair_resisting`` (np, 2)
     booleans, ``pair_temperature`` (np,) initial contact temperature (deg C).
-    Watches (``nw``): ``watch_body`` (nw,), ``watch_absolute`` (nw,), point numbers
+    Watches (``nw``): ``watch_body`` (nw,), ``watch_absolute`` (nw,), indices into ``points``
     ``watch_points`` with ``watch_start`` (nw + 1,) offsets.
     State and parameters: ``q0``, ``qd0`` (n,), ``parameters`` (p,).
     """
@@ -61,6 +61,8 @@ def flatten(model: Model) -> KernelArrays:
     bodies = model.bodies
     counts = [len(b.points) for b in bodies]
     watches = model.watches
+    start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    watch_points = [[start[w.body] + p for p in w.points] for w in watches]
     return KernelArrays(
         binding=np.array([b.binding for b in bodies], dtype=np.int64).reshape(-1, 3),
         binding_index=np.array([b.binding_index for b in bodies], dtype=np.int64).reshape(-1, 3),
@@ -74,16 +76,17 @@ def flatten(model: Model) -> KernelArrays:
         skin=np.array([b.skin_thickness for b in bodies], dtype=float),
         radius=np.array([np.hypot(b.points[:, 0], b.points[:, 1]).max() for b in bodies], dtype=float),
         points=np.ascontiguousarray(np.concatenate([b.points for b in bodies]) if bodies else np.zeros((0, 2))),
-        point_start=np.concatenate([[0], np.cumsum(counts)]).astype(np.int64),
+        point_start=start,
         pair_bodies=np.array([(p.first, p.second) for p in model.pairs], dtype=np.int64).reshape(-1, 2),
         pair_law=np.array([p.law for p in model.pairs], dtype=np.int64),
         pair_resisting=np.array([p.resisting for p in model.pairs], dtype=np.bool_).reshape(-1, 2),
         pair_temperature=np.array([p.initial_temperature for p in model.pairs], dtype=float),
         watch_body=np.array([w.body for w in watches], dtype=np.int64),
         watch_absolute=np.array([w.absolute for w in watches], dtype=np.bool_),
-        watch_points=np.array([p for w in watches for p in w.points], dtype=np.int64),
-        watch_start=np.concatenate([[0], np.cumsum([len(w.points) for w in watches])]).astype(np.int64),
+        watch_points=np.array([p for group in watch_points for p in group], dtype=np.int64),
+        watch_start=np.concatenate([[0], np.cumsum([len(g) for g in watch_points])]).astype(np.int64),
         q0=model.q0.copy(),
         qd0=model.qd0.copy(),
         parameters=model.parameters.values.copy(),
     )
+

@@ -1,1 +1,1 @@
-"""Running one version of a model: buffers for the kernel, the run loop, and its results."""
+"""Running one version of a model: version folders, buffers for the kernel, the run loop, outputs."""

@@ -82,9 +82,10 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int) -
         ("record_count", (2,), i),
     ]
     lcp = {"fwork": fwork, "iwork": iwork}
-    arrays = tuple(lcp[name] if name in lcp else np.zeros(shape, dtype=dtype) for name, shape, dtype in spec)
-    arrays[-1][:] = -1
-    return arrays
+    arrays = {name: lcp[name] if name in lcp else np.zeros(shape, dtype=dtype) for name, shape, dtype in spec}
+    arrays["record_count"][:] = -1  # no step to go back to
+    arrays["a2"][:] = np.nan  # accelerations at the current time not known yet
+    return tuple(arrays.values())
 
 
 def history_buffers(n: int, watches: int, length: int) -> tuple:

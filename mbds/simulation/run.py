@@ -45,6 +45,15 @@ class RunResult:
     events: np.ndarray
     state: RunState
     capacity: int = field(default=0)
+    stopped: str = ""  # why the run ended before its break time ("" when it reached it)
+
+    @property
+    def complete(self) -> bool:
+        return not self.stopped
+
+
+class RunStopped(Exception):
+    """Raised by a callback of :func:`simulate` to end the run early; its message says why."""
 
 
 def initial_state(model: Model, seed: int) -> RunState:
@@ -62,11 +71,19 @@ def initial_state(model: Model, seed: int) -> RunState:
     )
 
 
-def simulate(model: Model, run: RunSettings, state: RunState | None = None, progress=None) -> RunResult:
+def simulate(
+    model: Model, run: RunSettings, state: RunState | None = None, progress=None, *, on_events=None,
+    chunk: int = HISTORY_CHUNK,
+) -> RunResult:
     """Run ``model`` from ``state`` (default: its start) to ``run.break_time``.
 
-    ``progress(t)`` is called between chunks, if given. Raises RuntimeError when the state
-    stops being finite.
+    Between calls of the stepper (every ``chunk`` samples at most, or when its event buffer is
+    full) ``on_events(rows)`` gets the event rows found since the last call and ``progress(t)``
+    the time reached (s), if given. Either may raise :class:`RunStopped` or KeyboardInterrupt to
+    end the run there (unless it already reached its break time): the samples and events so far
+    are returned, with ``stopped`` set. The result does not depend on ``chunk``. A state that
+    stops being finite (or a mass matrix that is not positive definite) also ends the run, with
+    ``stopped`` saying so.
     """
     compiled = model.compile()
     arrays = flatten(model)
@@ -78,8 +95,9 @@ def simulate(model: Model, run: RunSettings, state: RunState | None = None, prog
     ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
     chunks: list[tuple] = []
     events: list[np.ndarray] = []
-    history = history_buffers(n, len(model.watches), HISTORY_CHUNK)
+    history = history_buffers(n, len(model.watches), chunk)
     event_buffer = (np.zeros((EVENT_CHUNK, 4)), np.zeros(1, dtype=np.int64))
+    stopped = ""
     while True:
         status = compiled.advance(
             mt, settings, run.break_time, state.clock, state.q, state.u, state.rng, state.point_loss,
@@ -89,18 +107,25 @@ def simulate(model: Model, run: RunSettings, state: RunState | None = None, prog
             capacity *= 2
             ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
             continue
-        if status in (K.HISTORY_FULL, K.REACHED):
-            count = int(history[-1][0])
-            chunks.append(tuple(a[:count].copy() for a in history[:-1]))
-            history[-1][0] = 0
-        if status in (K.EVENTS_FULL, K.REACHED, K.HISTORY_FULL, K.NOT_FINITE):
-            events.append(event_buffer[0][: event_buffer[1][0]].copy())
-            event_buffer[1][0] = 0
-        if progress is not None:
-            progress(float(state.clock[K.T]))
-        if status == K.REACHED:
-            break
+        count = int(history[-1][0])
+        chunks.append(tuple(a[:count].copy() for a in history[:-1]))
+        history[-1][0] = 0
+        events.append(event_buffer[0][: event_buffer[1][0]].copy())
+        event_buffer[1][0] = 0
         if status == K.NOT_FINITE:
-            raise RuntimeError(f"the state is not finite at t = {state.clock[K.T]:.9g} s")
+            stopped = f"the state is not finite at t = {state.clock[K.T]:.9g} s"
+            break
+        try:
+            if on_events is not None and len(events[-1]):
+                on_events(events[-1])
+            if progress is not None:
+                progress(float(state.clock[K.T]))
+        except (RunStopped, KeyboardInterrupt) as exc:
+            if status != K.REACHED:
+                stopped = (str(exc) or "stopped") if isinstance(exc, RunStopped) else "interrupted"
+        if stopped or status == K.REACHED:
+            break
     columns = [np.concatenate([c[j] for c in chunks]) for j in range(8)]
-    return RunResult(*columns, events=np.concatenate(events) if events else np.zeros((0, 4)), state=state, capacity=capacity)
+    return RunResult(
+        *columns, events=np.concatenate(events), state=state, capacity=capacity, stopped=stopped
+    )

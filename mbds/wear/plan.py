@@ -19,7 +19,8 @@ import numpy as np
 from mbds.errors import ModelError
 from mbds.io.folder import ModelFiles
 from mbds.io.text import QUOTES
-from mbds.wear.reshape import BodyWear, directions, displacements, loss_window, moved_shape, smooth
+from mbds.data.watches import smooth_closed
+from mbds.wear.reshape import BodyWear, directions, displacements, loss_window, moved_shape
 
 
 @dataclass
@@ -52,7 +53,7 @@ def plan_wear(files: ModelFiles, losses: dict[str, np.ndarray], version: int) ->
             continue
         count = len(shapes[name].points) - 1
         points = np.array(sorted({p for item in section.items for group in item.groups(count) for p in group}))
-        loss = smooth(losses.get(name, np.zeros(count)), smoothing)[points]
+        loss = smooth_closed(losses.get(name, np.zeros(count)), smoothing)[points]
         selected[name] = (section, points, loss)
     plan = WearPlan()
     together = [name for name in selected if name in balanced]
@@ -96,7 +97,7 @@ def _updated_constants(files: ModelFiles, losses: dict[str, np.ndarray], smoothi
         for body in update.bodies:
             if body not in losses:
                 raise ModelError(f"[constantsUpdate] names body '{body}', which has no recorded losses", wtc.path)
-        point_losses = {body: smooth(losses[body], smoothing) for body in update.bodies}
+        point_losses = {body: smooth_closed(losses[body], smoothing) for body in update.bodies}
         window = loss_window(np.concatenate(list(point_losses.values())), wtc.reshape_window)
         totals = np.array([np.clip(point_losses[b], window.low, window.high).sum() for b in update.bodies])
         top = totals.max()

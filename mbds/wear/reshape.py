@@ -58,15 +58,6 @@ class BodyWear:
     shape: np.ndarray
 
 
-def smooth(loss: np.ndarray, half_width: int) -> np.ndarray:
-    """Centered moving average of half-width ``half_width`` over a closed ring of values."""
-    if half_width <= 0 or len(loss) == 0:
-        return loss.copy()
-    count = len(loss)
-    offsets = np.arange(-half_width, half_width + 1)
-    return loss[(np.arange(count)[:, None] + offsets[None, :]) % count].mean(axis=1)
-
-
 def loss_window(values: np.ndarray, window: ReshapeWindow) -> Window:
     """The clipping window of a set of loss values under ``[reshapeWindow]``."""
     ordered = np.sort(values)

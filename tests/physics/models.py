@@ -47,7 +47,10 @@ class BodyOnFloor:
     """A body over the floor: shape (k, 2) in the body frame (m, origin at the centroid), mass
     (kg), centroidal inertia (kg m²), start pose (x, y, Rz) and velocity (m, rad; m/s, rad/s),
     gravity (gx, gy) (m/s²), friction coefficient and normal restitution; world settings: time
-    steps (s), maximum penetration (m), history interval (in maximum steps) and break time (s)."""
+    steps (s), maximum penetration (m), history interval (in maximum steps), break time (s) and
+    ``maximumDisplacementFactor``. The factor is 2, not the default 0.5: contacts are detected
+    within maxPen + factor * v * dt_max, and a factor below 1 lets a fast vertex cross the
+    skin within one step unseen."""
 
     shape: np.ndarray
     mass: float
@@ -63,6 +66,7 @@ class BodyOnFloor:
     history_every: int = 1
     history_each_step: bool = False
     break_time: float = 1.0
+    displacement_factor: float = 2.0
     extra: dict[str, str] = field(default_factory=dict)
 
     def write(self, folder: Path) -> Path:
@@ -79,6 +83,7 @@ class BodyOnFloor:
                     "writeToHistoryMultipleOfMaximumTimestep": str(self.history_every),
                     "writeToHistoryEachTimeStep": "1" if self.history_each_step else "0",
                     "breakTime": _num(self.break_time),
+                    "maximumDisplacementFactor": _num(self.displacement_factor),
                     **self.extra,
                 },
                 "bodies": {"body1": "body.bdy", "body2": "floor.bdy"},

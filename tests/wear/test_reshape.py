@@ -8,7 +8,7 @@ from mbds.io.folder import read_model_files
 from mbds.io.watches import ReshapeWindow
 from mbds.model.geometry import polygon_properties
 from mbds.wear.plan import plan_wear
-from mbds.wear.reshape import directions, displacements, loss_window, smooth
+from mbds.wear.reshape import directions, displacements, loss_window
 
 # an octagon-like square with 8 points, counter-clockwise, side 2, centred at the origin
 SQUARE = [(-1, -1), (0, -1), (1, -1), (1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0)]
@@ -117,10 +117,6 @@ def test_direction_axes_and_outside():
     shape = np.array(SQUARE + SQUARE[:1], dtype=float)
     assert directions(shape, np.array([1]), -1, (0, 0)) == pytest.approx(np.array([[0, -1]]))
     assert directions(shape, np.array([1, 3]), 0, (3, 4)) == pytest.approx(np.array([[0.6, 0.8], [0.6, 0.8]]))
-
-
-def test_smoothing_wraps_around():
-    assert smooth(np.array([3.0, 0, 0, 0, 0, 0]), 1) == pytest.approx([1, 1, 0, 0, 0, 1])
 
 
 def test_reshaping_that_breaks_the_shape_is_refused(tmp_path):

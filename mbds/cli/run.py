@@ -1,0 +1,98 @@
+"""``mbds run``: run one version of a model with a progress bar, Ctrl-C handling and a summary."""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+import time
+from pathlib import Path
+
+from rich.console import Console
+from rich.markup import escape
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+from mbds.data.record import RunRecord
+from mbds.simulation.version_run import RunOptions, run_version
+from mbds.simulation.versions import run_folder
+
+EXIT_STOPPED = 1
+EXIT_INTERRUPTED = 130
+OUTPUTS = "history.nc data.txt watches.txt log.txt"
+
+
+def run_command(path: Path, options: RunOptions, console: Console) -> int:
+    """Run the version that ``path`` names (see :func:`run_folder`); return the exit code."""
+    folder = run_folder(path, options.start_from)
+    console.print(f"running {escape(str(folder))}", highlight=False)
+    wall = time.perf_counter()
+    with _interrupt_flag() as interrupted, _progress_bar(console) as bar:
+        task = bar.add_task("", total=None, now=0.0, end=0.0, rate=0.0)
+
+        def progress(start, now, end, steps):
+            elapsed = max(time.perf_counter() - wall, 1e-9)
+            bar.update(task, total=end - start, completed=now - start, now=now, end=end, rate=steps / elapsed)
+            if interrupted.is_set():
+                raise KeyboardInterrupt
+
+        try:
+            record = run_version(folder, options, progress)
+        except KeyboardInterrupt:  # a second Ctrl-C
+            console.print("interrupted; nothing written", style="yellow")
+            return EXIT_INTERRUPTED
+    _print_summary(record, folder, time.perf_counter() - wall, console)
+    if record.complete:
+        return 0
+    return EXIT_INTERRUPTED if record.stopped == "interrupted" else EXIT_STOPPED
+
+
+def _progress_bar(console: Console) -> Progress:
+    """Simulated time against end time and steps per second; silent when not on a terminal."""
+    return Progress(
+        TextColumn("t = {task.fields[now]:.6g} / {task.fields[end]:.6g} s"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TextColumn("{task.fields[rate]:,.0f} steps/s"),
+        TimeElapsedColumn(),
+        console=console,
+        disable=not console.is_terminal,
+    )
+
+
+@contextlib.contextmanager
+def _interrupt_flag():
+    """A flag set by the first Ctrl-C (a second one interrupts at once)."""
+    flag = threading.Event()
+    if threading.current_thread() is not threading.main_thread():
+        yield flag
+        return
+
+    def handler(signum, frame):
+        flag.set()
+        signal.signal(signal.SIGINT, previous)
+
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        yield flag
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _print_summary(r: RunRecord, folder: Path, wall: float, console: Console) -> None:
+    c = r.counters
+    if r.complete:
+        console.print(f"break time reached at t = {r.end_time:.9g} s", highlight=False)
+    else:
+        stop = f"stopped at t = {r.end_time:.9g} s ({escape(r.stopped)}): results are incomplete"
+        console.print(f"[yellow]{stop}[/yellow]", highlight=False)
+    console.print(
+        f"steps {c['steps']} ({c['rejected_steps']} rejected), impacts {c['impacts']}, "
+        f"LCP failures {c['lcp_failures']}, over-penetrations {c['over_penetrations']}",
+        highlight=False,
+    )
+    console.print(
+        f"mechanical energy {r.start_energy:.6g} J -> {r.end_energy:.6g} J, lost work {r.run_lost_work:.6g} J, "
+        f"driver work {r.run_driver_work:.6g} J, energy balance residual {r.energy_residual:.3g} J",
+        highlight=False,
+    )
+    console.print(f"wall time {wall:.3g} s; wrote {OUTPUTS} in {escape(str(folder))}", highlight=False)

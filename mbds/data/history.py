@@ -1,0 +1,154 @@
+"""``history.nc``: the samples of one run as a CF-style NetCDF file, and the exact state the run
+ended in (group ``final_state``) for continuing it. The schema is documented in docs/outputs.md."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from mbds import __version__
+from mbds.data.record import RunRecord
+from mbds.errors import ModelError
+from mbds.io.text import atomic_path
+from mbds.kernel import stepper as K
+from mbds.simulation.run import RunState
+
+FILE_NAME = "history.nc"
+STATE_GROUP = "final_state"
+COMPRESSED = {"zlib": True, "complevel": 4, "shuffle": True}
+CLOCK_ENTRIES = (
+    "time next_step next_sample steps impacts rejected_steps lost_work driver_work max_penetration "
+    "lcp_failures over_penetrations last_penetration"
+)
+
+
+def write_history(path: str | Path, record: RunRecord) -> None:
+    """Write ``record`` to ``path`` atomically (through a temporary file and a rename)."""
+    root = dataset(record)
+    encoding = {name: dict(COMPRESSED) for name, v in root.data_vars.items() if v.ndim == 2 and v.size}
+    with atomic_path(path) as tmp:
+        root.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
+        state_dataset(record.final_state).to_netcdf(tmp, mode="a", group=STATE_GROUP, engine="netcdf4")
+
+
+def dataset(record: RunRecord) -> xr.Dataset:
+    """The root group of ``history.nc``."""
+    r = record
+    tw, ts = ("time", "watch"), ("time", "coordinate")
+    kind, imp_units = ("force", "N") if r.watches.force else ("impulse", "N s")
+    since = "since the run's start"
+    data = {
+        "q": (ts, r.q, _cf("generalized coordinates", "m or rad")),
+        "qd": (ts, r.qd, _cf("generalized velocities", "m/s or rad/s")),
+        "qdd": (ts, r.qdd, _cf("generalized accelerations", "m/s2 or rad/s2")),
+        "mechanical_energy": ("time", r.energy, _cf("mechanical energy (.me expression)", "J")),
+        "lost_work": ("time", r.lost_work, _cf(f"mechanical energy lost at contacts {since}", "J")),
+        "driver_work": ("time", r.driver_work, _cf(f"work of rheonomic drivers {since}", "J")),
+        "shape_x": ("point", r.shape[:, 0], _cf("shape point x in the body frame", "m")),
+        "shape_y": ("point", r.shape[:, 1], _cf("shape point y in the body frame", "m")),
+        "point_lost_work": ("point", r.point_lost_work, _cf("mechanical energy lost at the point in this run", "J")),
+        "point_lost_work_smoothed": ("point", r.point_lost_work_smoothed, _cf(
+            "point_lost_work smoothed by smoothWorkLeftRight", "J", half_width=r.options["smooth_work_left_right"])),
+    }
+    for direction, values in r.watches.impulse.items():
+        data[f"impulse_{direction}"] = (tw, values, _cf(f"{direction} {kind} at the watch per sample interval", imp_units))
+    if r.watches.work is not None:
+        what = since if r.options["cumulative_work"] else "per sample interval"
+        data["work"] = (tw, r.watches.work, _cf(f"mechanical energy lost at the watch {what}", "J"))
+    if r.watches.angle is not None:
+        data["angle"] = (tw, r.watches.angle, _cf("angle of the last contact normal to the x axis", "rad"))
+    if r.watches.t_div_n is not None:
+        data["t_div_n"] = (tw, r.watches.t_div_n, _cf("running ratio of summed tangential to normal impulse", "1"))
+    frames = ["xy" if a else "nt" for a in r.watch_absolute]
+    coords = {
+        "time": ("time", r.time, _cf("time", "s", axis="T")),
+        "coordinate": ("coordinate", _text(r.coordinates), _named("generalized coordinate")),
+        "coordinate_unit": ("coordinate", _text(r.coordinate_units), _named("unit of the coordinate")),
+        "watch": ("watch", _text(r.watch_labels), _named("watch label")),
+        "watch_frame": ("watch", _text(frames), _named("frame of the legacy impulse columns (nt or xy)")),
+        "body": ("body", _text(r.bodies), _named("body name")),
+        "point_body": ("point", r.point_body.astype(np.int32), _named("index of the point's body")),
+        "point_number": ("point", r.point_number.astype(np.int32), _named("point number in its body's shape")),
+    }
+    return xr.Dataset(data, coords=coords, attrs=_attributes(r))
+
+
+def _cf(long_name: str, units: str, **extra) -> dict:
+    return {"long_name": long_name, "units": units, **extra}
+
+
+def _named(long_name: str) -> dict:
+    return {"long_name": long_name}
+
+
+def _text(values: list[str]) -> np.ndarray:
+    return np.array(values, dtype=object)
+
+
+def _attributes(r: RunRecord) -> dict:
+    attrs = {
+        "Conventions": "CF-1.10",
+        "title": f"mbds run of model {r.model}, version {r.version:03d}",
+        "mbds_version": __version__,
+        "model": r.model,
+        "version": r.version,
+        "seed": r.seed,
+        "continued_from": -1 if r.continued_from is None else r.continued_from,
+        "start_time": r.start_time,
+        "end_time": r.end_time,
+        "break_time": r.break_time,
+        "complete": int(r.complete),
+        "stop_reason": r.stopped,
+        "start_energy": r.start_energy,
+        "end_energy": r.end_energy,
+        "run_lost_work": r.run_lost_work,
+        "run_driver_work": r.run_driver_work,
+        "energy_residual": r.energy_residual,
+        "max_penetration": r.max_penetration,
+        **r.counters,
+        **{f"watch_{k}": v for k, v in r.options.items()},
+        "input_files": " ".join(r.inputs),
+    }
+    attrs.update({f"input_{name.replace('/', ':')}": text for name, text in r.inputs.items()})
+    return attrs
+
+
+def state_dataset(state: RunState) -> xr.Dataset:
+    """The ``final_state`` group: the kernel state, exactly."""
+    columns = "impN impT impX impY work angle"
+    return xr.Dataset({
+        "clock": ("clock_entry", state.clock, {**_named("kernel clock and counters"), "entries": CLOCK_ENTRIES}),
+        "q": ("coordinate", state.q, _cf("generalized coordinates", "m or rad")),
+        "qd": ("coordinate", state.u, _cf("generalized velocities", "m/s or rad/s")),
+        "rng": ("rng_word", state.rng, _named("state of the generator of lexicographic tolerances")),
+        "point_loss": ("kernel_point", state.point_loss, _cf("lost work per kernel point (closing points too)", "J")),
+        "point_interval": (("kernel_point", "point_column"), state.point_interval,
+                           {**_named("per-point sums since the last sample"), "columns": columns}),
+    })
+
+
+def read_final_state(path: str | Path) -> tuple[RunState, dict]:
+    """The state a run ended in and the attributes of its ``history.nc``; ModelError when the
+    file is missing or not a complete mbds history."""
+    path = Path(path)
+    if not path.is_file():
+        raise ModelError(f"no {FILE_NAME} here: run this version first", path.parent)
+    try:
+        with xr.open_dataset(path, group=STATE_GROUP, engine="netcdf4") as ds:
+            state = RunState(
+                clock=ds["clock"].values.copy(),
+                q=ds["q"].values.copy(),
+                u=ds["qd"].values.copy(),
+                rng=ds["rng"].values.astype(np.uint64),
+                point_loss=ds["point_loss"].values.copy(),
+                point_interval=ds["point_interval"].values.copy(),
+            )
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            attrs = dict(ds.attrs)
+    except (OSError, KeyError, ValueError) as exc:
+        raise ModelError(f"not a readable mbds history ({exc})", path) from None
+    if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
+        raise ModelError("written by an incompatible mbds version (its state has another layout)", path)
+    return state, attrs

@@ -1,0 +1,112 @@
+"""Watch outputs: the kernel's per-interval sums turned into what the ``.wtc`` ``[common]``
+options ask for, and the lost work per shape point.
+
+The kernel reports, for every history sample k and watch, the impulses (N s) and lost work (J)
+summed over the interval since the previous sample, and the last contact-normal angle (rad).
+The options act on these series in this order, each run on its own:
+
+- ``convertImpulseToForce``: impulses divided by the interval length (N; 0 for an empty interval);
+- ``timeConstant`` tau > 0: y_k = y_{k-1} exp(-dt_k / tau) + x_k (a decaying sensor);
+- ``cummulativeWork``: work summed from the start of the run;
+- ``absoluteAngleInsteadOfWork``: the angle replaces the work;
+- ``writeAveragedTDivN``: running ratio of summed impulses, sum(T) / sum(N) (x-y watches:
+  sum(X) / sum(Y)), NaN until the first normal impulse.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mbds.io.watches import CommonOptions
+from mbds.kernel.stepper import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, WORK
+
+IMPULSE_COLUMNS = {"normal": IMP_N, "tangential": IMP_T, "x": IMP_X, "y": IMP_Y}
+
+
+@dataclass
+class WatchSeries:
+    """Watch outputs over (sample, watch): ``impulse`` per direction (normal, tangential, x, y;
+    N s, or N for forces), ``work`` (J) or ``angle`` (rad) and ``t_div_n`` (None when not asked)."""
+
+    impulse: dict[str, np.ndarray]
+    work: np.ndarray | None
+    angle: np.ndarray | None
+    t_div_n: np.ndarray | None
+    force: bool
+
+
+def watch_series(sums: np.ndarray, intervals: np.ndarray, absolute: np.ndarray, options: CommonOptions) -> WatchSeries:
+    """Apply ``options`` to ``sums`` (samples, watches, POINT_COLUMNS); ``intervals`` (samples,)
+    are the sample intervals (s); ``absolute`` (watches,) marks x-y watches."""
+    impulse = {}
+    for name, column in IMPULSE_COLUMNS.items():
+        values = sums[:, :, column]
+        if options.convert_impulse_to_force:
+            values = per_time(values, intervals)
+        if options.time_constant > 0:
+            values = decay(values, intervals, options.time_constant)
+        impulse[name] = values
+    work = angle = t_div_n = None
+    if options.absolute_angle_instead_of_work:
+        angle = sums[:, :, ANGLE].copy()
+    else:
+        work = sums[:, :, WORK]
+        work = np.cumsum(work, axis=0) if options.cumulative_work else work.copy()
+    if options.write_averaged_t_div_n:
+        nt = running_ratio(sums[:, :, IMP_T], sums[:, :, IMP_N])
+        xy = running_ratio(sums[:, :, IMP_X], sums[:, :, IMP_Y])
+        t_div_n = np.where(absolute[None, :], xy, nt)
+    return WatchSeries(impulse, work, angle, t_div_n, options.convert_impulse_to_force)
+
+
+def per_time(values: np.ndarray, intervals: np.ndarray) -> np.ndarray:
+    """``values`` (samples, ...) divided by their intervals (s); 0 where an interval is empty."""
+    dt = intervals.reshape((-1,) + (1,) * (values.ndim - 1))
+    return np.divide(values, dt, out=np.zeros_like(values), where=dt > 0)
+
+
+def decay(values: np.ndarray, intervals: np.ndarray, tau: float) -> np.ndarray:
+    """y_k = y_{k-1} exp(-dt_k / tau) + x_k along the first axis, from y_{-1} = 0."""
+    factors = np.exp(-intervals / tau)
+    out = np.empty_like(values)
+    previous = np.zeros_like(values[0]) if len(values) else None
+    for k in range(len(values)):
+        previous = previous * factors[k] + values[k]
+        out[k] = previous
+    return out
+
+
+def running_ratio(numerator: np.ndarray, denominator: np.ndarray) -> np.ndarray:
+    """sum(numerator) / sum(denominator) up to each sample (first axis); NaN while the sum of the
+    denominator is 0."""
+    num = np.cumsum(numerator, axis=0)
+    den = np.cumsum(denominator, axis=0)
+    return np.divide(num, den, out=np.full_like(num, np.nan), where=den != 0)
+
+
+def distinct_points(values: np.ndarray, point_start: np.ndarray) -> np.ndarray:
+    """Per-point values of all bodies (closing repeats included, ``point_start`` offsets)
+    without the closing repeats (the kernel books an edge ending there on the body's point 0)."""
+    keep = np.ones(len(values), dtype=bool)
+    keep[point_start[1:] - 1] = False
+    return values[keep]
+
+
+def smooth_closed(values: np.ndarray, half_width: int) -> np.ndarray:
+    """Centred moving average over 2 * half_width + 1 neighbours of the points of one closed
+    shape (wrapping around); every point gets the mean when the window covers the shape."""
+    count = len(values)
+    if half_width <= 0 or count == 0:
+        return values.copy()
+    if 2 * half_width + 1 >= count:
+        return np.full_like(values, values.mean())
+    total = sum(np.roll(values, shift) for shift in range(-half_width, half_width + 1))
+    return total / (2 * half_width + 1)
+
+
+def smooth_points(values: np.ndarray, starts: np.ndarray, half_width: int) -> np.ndarray:
+    """:func:`smooth_closed` applied to each body of distinct-point ``values`` (offsets ``starts``)."""
+    parts = [smooth_closed(values[starts[b] : starts[b + 1]], half_width) for b in range(len(starts) - 1)]
+    return np.concatenate(parts) if parts else values.copy()

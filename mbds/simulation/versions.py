@@ -1,0 +1,107 @@
+"""Version folders: a model folder holds the model files, an optional job file and one folder per
+version (``000``, ``001``, ...), each with its own copy of the model files and the outputs of
+its run."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import tempfile
+import warnings
+from pathlib import Path
+
+from mbds.data.history import FILE_NAME as HISTORY
+from mbds.errors import ModelError, ModelWarning
+from mbds.io.folder import find_world, read_model_files, write_model_files
+from mbds.io.job import JobSettings, parse_job
+from mbds.io.text import read_text
+from mbds.model.load import assemble_model
+
+_VERSION = re.compile(r"\d{3}")
+
+
+def version_name(number: int) -> str:
+    """``000`` for 0: three digits."""
+    if not 0 <= number <= 999:
+        raise ModelError(f"version {number} is not between 000 and 999")
+    return f"{number:03d}"
+
+
+def version_number(folder: str | Path) -> int | None:
+    """The number of a version folder's name (``001`` -> 1), None for other names."""
+    name = Path(folder).name
+    return int(name) if _VERSION.fullmatch(name) else None
+
+
+def existing_versions(model_folder: str | Path) -> list[int]:
+    """Numbers of the version folders present, in order."""
+    folder = Path(model_folder)
+    found = (version_number(p) for p in folder.iterdir() if p.is_dir()) if folder.is_dir() else ()
+    return sorted(v for v in found if v is not None)
+
+
+def ensure_version(model_folder: str | Path, number: int, source: str | Path | None = None) -> Path:
+    """The folder of version ``number``; when absent it is created from the files of ``source``
+    (default: the model folder), which are read and checked first. The folder appears whole or
+    not at all."""
+    model_folder = Path(model_folder)
+    target = model_folder / version_name(number)
+    if target.is_dir() and any(target.glob("*.wld")):
+        return target
+    if target.exists() and any(target.iterdir()):
+        raise ModelError("version folder without a .wld world file", target)
+    with warnings.catch_warnings():  # the version's own files repeat any warning when they are loaded
+        warnings.simplefilter("ignore", ModelWarning)
+        files = read_model_files(source or model_folder)
+        assemble_model(files, number)  # bad input stops here, before anything is written
+    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=model_folder))
+    try:
+        staging.chmod(0o755)  # mkdtemp makes it private
+        write_model_files(files, staging)
+        if target.exists():
+            target.rmdir()
+        os.rename(staging, target)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    return target
+
+
+def run_folder(path: str | Path, start_from: int | None = None) -> Path:
+    """The version folder a run of ``path`` uses, created when needed.
+
+    ``path`` is a version folder (created from the model folder's files, or from those of
+    version ``start_from`` if given, when absent) or a model folder: then version 000, or the
+    version after the highest existing one when the run starts from ``start_from``.
+    """
+    path = Path(path)
+    number = version_number(path)
+    if number is not None:
+        model_folder = path.parent
+    else:
+        if not path.is_dir():
+            raise ModelError("expected a model folder or a version folder (000, 001, ...)", path)
+        find_world(path)  # a model folder, or a clear error
+        model_folder = path
+        number = 0 if start_from is None else max(existing_versions(path), default=-1) + 1
+    source = None
+    if start_from is not None:
+        if start_from == number:
+            raise ModelError(f"version {version_name(number)} cannot start from its own end", path)
+        source = model_folder / version_name(start_from)
+        if not source.is_dir():
+            raise ModelError(f"no version {version_name(start_from)} to start from", model_folder)
+        if not (source / HISTORY).is_file():
+            raise ModelError(f"no {HISTORY} to start from: run this version first", source)
+    return ensure_version(model_folder, number, source)
+
+
+def job_settings(model_folder: str | Path, world_stem: str) -> JobSettings:
+    """The ``[main]`` settings of the model folder's job file: ``<world>.job``, else its only
+    ``.job`` file; the defaults when there is none."""
+    folder = Path(model_folder)
+    named = folder / f"{world_stem}.job"
+    jobs = sorted(folder.glob("*.job"))
+    path = named if named.is_file() else (jobs[0] if len(jobs) == 1 else None)
+    return parse_job(read_text(path), path).settings if path else JobSettings()
