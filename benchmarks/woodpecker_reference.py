@@ -56,7 +56,7 @@ GAP0 = np.array([L_M + L_G - L_S - R_0, R_M - R_0, R_M - R_0])
 STEP = 1e-5  # s
 GAP_TOL = 1e-9  # m
 SPEED_TOL = 1e-6  # m/s
-SKIP = 0.3  # s
+SKIP = 1.0  # s of transient left out
 
 
 def h_vector(q: np.ndarray) -> np.ndarray:
@@ -180,7 +180,7 @@ def run_mbds(duration: float):
 
 
 def main() -> None:
-    duration = float(sys.argv[1]) if len(sys.argv) > 1 else 1.0
+    duration = float(sys.argv[1]) if len(sys.argv) > 1 else 2.0
     start = time.perf_counter()
     t, q, u, impacts = simulate_reference(duration)
     print(f"reference: {len(impacts)} impacts in {duration} s ({time.perf_counter() - start:.1f} s wall)")
@@ -191,9 +191,9 @@ def main() -> None:
     jumps = velocity_jumps(t2, u2, a2, (1.0, L_M, L_G), 1e-3)
     ours = cycle_figures(t2, q2, jumps, SKIP)
     print(f"\nafter {SKIP} s of {duration} s:")
-    print(f"{'':>4}{'reference (small-angle, linear gaps)':<48}mbds (campaigns/woodpecker)")
+    print(f"{'':>4}{'reference (small-angle, linear gaps)':<60}mbds (campaigns/woodpecker)")
     for left, right in zip(reference.lines(), ours.lines()):
-        print(f"{'':>4}{left:<48}{right}")
+        print(f"{'':>4}{left:<60}{right}")
 
 
 if __name__ == "__main__":

@@ -7,8 +7,8 @@ lives in arrays the caller owns, so a run can be interrupted and resumed exactly
 Each step, at (q, u, t):
 
 1. body kinematics from q (generalized, dependent and fixed coordinates; virtual bodies);
-2. contact detection with a margin per pair of ``maxPen + f * v * dt_max`` (f the larger
-   ``maximumDisplacementFactor`` of the two bodies, v their largest vertex speed);
+2. contact detection with a margin per pair of ``maxPen + (1 + f) * v * dt_max`` (f the
+   larger ``maximumDisplacementFactor`` of the two bodies, v their largest vertex speed);
 3. the step is checked: if penetration grew beyond ``maximumPenetration`` since the last accepted
    state and the step was longer than ``minimumTimestep``, it is rejected and retried from its
    start with half the step;
@@ -61,9 +61,13 @@ IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, POINT_COLUMNS = range(7)
 R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = range(8)
 
 REST_FRACTION = 0.01
-"""A closed contact whose normal or tangential speed is below REST_FRACTION * maxPen / dt_max
-is at rest (normal) or a stick candidate (tangential): within a maximum step it moves by at
-most 1 % of the allowed penetration."""
+"""A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
+dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration."""
+STICK_FRACTION = 1e-3
+"""A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
+stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero."""
+CLOSED_FRACTION = 0.01
+"""A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 
 
 @jit(inline="always")
@@ -87,7 +91,7 @@ def advance(
      WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t, laws,
      M, L, hv, minv_h, YN, YT, column, hrow, active, stick, sign, A_flat, bvec, z, w, fwork, iwork,
      lam_n, lam_t, lam_n1, lam_t1, imp_n, imp_t, gam_n, gam_t, compression_loss, a1, a2, q_star, u_star,
-     backup_q, backup_u, backup_clock, records_int, records_float, record_count) = ws
+     backup_q, backup_u, backup_clock, records_int, records_float, record_count, last_sample) = ws
     n = q.shape[0]
     while True:
         t = clock[T]
@@ -120,7 +124,8 @@ def advance(
         clock[LAST_PENETRATION] = penetration
         clock[MAX_PENETRATION] = max(clock[MAX_PENETRATION], penetration)
         # --- the state at t is final: history, end, buffers
-        if t >= clock[NEXT_SAMPLE] - 1e-12 * max(1.0, abs(t)) or settings[SAMPLE_EACH_STEP] > 0.0:
+        due = t >= clock[NEXT_SAMPLE] - 1e-12 * max(1.0, abs(t)) or settings[SAMPLE_EACH_STEP] > 0.0
+        if due and t > last_sample[0]:  # (after going back, the start time is not sampled twice)
             if h_count[0] >= history[0].shape[0]:
                 return HISTORY_FULL
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
@@ -133,6 +138,7 @@ def advance(
                                 WN, WT, YN, YT, minv_h, wbar_n, wbar_t, column, hrow, A_flat, bvec, z, w,
                                 fwork, iwork, lam_n, lam_t, a2, events, t)
             _sample(mechanical_energy, q, u, a2, t, p, clock, point_interval, watch_start, watch_points, history)
+            last_sample[0] = t
             record_count[0] = -1  # no going back past a sample
             record_count[1] = -1
             # the next sample time as a multiple of the interval (no drift from repeated sums)
@@ -155,7 +161,7 @@ def advance(
         # --- 4: impact
         impacting = False
         for i in range(nc):
-            if c_gap[i] <= 0.0 and gd_n[i] < -settings[ZERO_VELOCITY]:
+            if c_gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and gd_n[i] < -settings[ZERO_VELOCITY]:
                 impacting = True
         solved = True
         if impacting:
@@ -180,8 +186,15 @@ def advance(
         # --- 6: step size
         dt = min(1.5 * clock[DT], settings[DT_MAX])
         for i in range(nc):
-            if c_gap[i] > 0.0 and gd_n[i] < 0.0:
-                dt = min(dt, (c_gap[i] + settings[MAX_PEN]) / -gd_n[i])
+            if c_gap[i] > CLOSED_FRACTION * settings[MAX_PEN]:  # open: reach at most half maxPen
+                accel = dot(WN[i], a1) + wbar_n[i]
+                dt = min(dt, _time_to_reach(c_gap[i] + 0.5 * settings[MAX_PEN], gd_n[i], accel))
+        for a in range(na):  # a sliding contact stops at the end of the step, not beyond
+            i = active[a]
+            if not stick[i]:
+                accel = dot(WT[i], a1) + wbar_t[i]
+                if gd_t[i] * accel < 0.0:
+                    dt = min(dt, -gd_t[i] / accel)
         dt = max(dt, settings[DT_MIN])
         clock[DT] = dt
         dt = min(dt, clock[NEXT_SAMPLE] - t, until - t)
@@ -250,10 +263,10 @@ def _contact_forces(nc, c_gap, gd_n, gd_t, settings, tol_lex, active, stick, sig
     rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
     na = 0
     for i in range(nc):
-        if c_gap[i] <= 0.0 and gd_n[i] <= rest:
+        if c_gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and gd_n[i] <= rest:
             active[na] = i
             na += 1
-            stick[i] = abs(gd_t[i]) <= rest
+            stick[i] = abs(gd_t[i]) <= STICK_FRACTION * rest
             sign[i] = 1.0 if gd_t[i] > 0.0 else -1.0
     ok = _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n, wbar_t, settings, tol_lex,
                         column, hrow, A_flat, bvec, z, w, fwork, iwork, lam_n, lam_t, acc, events, t)
@@ -284,15 +297,34 @@ def _kinematics(dependent_state, dependent_jacobian, binding, binding_index, sta
 
 
 @jit
+def _time_to_reach(distance, rate, accel):
+    """The first time (s) at which a gap that is ``distance`` (m) above a target, changing at
+    ``rate`` (m/s) with ``accel`` (m/s^2), reaches it; inf if it never does."""
+    if accel == 0.0:
+        return distance / -rate if rate < 0.0 else np.inf
+    disc = rate * rate - 2.0 * accel * distance
+    if disc < 0.0:
+        return np.inf
+    root = np.sqrt(disc)
+    first = (-rate - root) / accel if accel > 0.0 else 2.0 * distance / (-rate + root)
+    if first > 0.0:
+        return first
+    second = (-rate + root) / accel
+    return second if second > 0.0 else np.inf
+
+
+@jit
 def _margins(pair_bodies, carrier, vel, radius, factor, settings, margin):
-    """Detection margin of each pair (m): maxPen + f v dt_max (see the module documentation)."""
+    """Detection margin of each pair (m): maxPen + (1 + f) v dt_max (see the module
+    documentation): at least one maximum step of travel, so no vertex can pass from beyond
+    the margin to beyond the skin in one step."""
     for k in range(pair_bodies.shape[0]):
         extent = 0.0
         for side in range(2):
             b = pair_bodies[k, side]
             c = carrier[b] if carrier[b] >= 0 else b
             speed = np.sqrt(vel[c, 0] ** 2 + vel[c, 1] ** 2) + abs(vel[c, 2]) * (radius[b] + radius[c])
-            extent = max(extent, factor[b] * speed * settings[DT_MAX])
+            extent = max(extent, (1.0 + factor[b]) * speed * settings[DT_MAX])
         margin[k] = settings[MAX_PEN] + extent
 
 
@@ -368,7 +400,7 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
     compression are kept (expansion failed)."""
     na = 0
     for i in range(nc):
-        if c_gap[i] <= 0.0:
+        if c_gap[i] <= CLOSED_FRACTION * settings[MAX_PEN]:
             active[na] = i
             na += 1
             stick[i] = True

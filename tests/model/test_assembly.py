@@ -46,7 +46,7 @@ def test_woodpecker_virtual_and_dependent_bodies(models):
     ring, bird = by_name["ring"], by_name["bird"]
     assert bird.binding == (DEPENDENT, DEPENDENT, GENERALIZED)
     assert ring.binding[1:] == (GENERALIZED, GENERALIZED)
-    for side in ("ringSideR", "ringSideL"):
+    for side in ("ringSideR",):
         virtual = by_name[side]
         assert virtual.virtual and model.bodies[virtual.carrier] is ring
         assert virtual.mass == 0.0
@@ -55,7 +55,7 @@ def test_woodpecker_virtual_and_dependent_bodies(models):
         rebuilt = ring.start_position[:2] + np.array([c * virtual.offset[0] - s * virtual.offset[1], s * virtual.offset[0] + c * virtual.offset[1]])
         assert rebuilt == pytest.approx(virtual.start_position[:2], abs=1e-15)
     pairs = {(model.bodies[p.first].name, model.bodies[p.second].name) for p in model.pairs}
-    assert ("ring", "ringSideR") not in pairs and ("ringSideR", "ringSideL") not in pairs
+    assert ("ring", "ringSideR") not in pairs and ("stick", "ringSideR") in pairs
 
 
 def _numeric(expr, model, q, qd, t):
@@ -135,7 +135,7 @@ def test_flattened_arrays(models):
     nb = len(model.bodies)
     assert arrays.binding.shape == (nb, 3) and arrays.points.shape[1] == 2
     assert arrays.point_start[-1] == len(arrays.points)
-    assert (arrays.carrier >= 0).sum() == 2
+    assert (arrays.carrier >= 0).sum() == 1
     assert arrays.pair_bodies.shape == (len(model.pairs), 2)
     assert arrays.watch_start[-1] == len(arrays.watch_points)
     assert arrays.parameters == pytest.approx(model.parameters.values)
@@ -222,3 +222,21 @@ def test_unsupported_parameter_ni_is_warned_about(copy_2mass):
     cop.write_text(cop.read_text().replace("parameterNi=0", "parameterNi=0.2"))
     with pytest.warns(UserWarning, match=r"2mass.cop:5: parameterNi is not supported"):
         load_model(copy_2mass, compile=False)
+
+
+def test_pairs_that_can_never_touch_are_skipped(tmp_path):
+    """[ringSideR:all] names every body, but not the carrier ring, a second virtual body of the
+    same carrier, or two fixed bodies."""
+    folder = tmp_path / "woodpecker"
+    shutil.copytree(CAMPAIGNS / "woodpecker", folder)
+    (folder / "ringSideX.bdy").write_text((folder / "ringSideR.bdy").read_text().replace("name = ringSideR", "name = ringSideX"))
+    (folder / "post.bdy").write_text((folder / "stick.bdy").read_text().replace("name = stick", "name = post"))
+    world = folder / "woodpecker.wld"
+    world.write_text(world.read_text() + "body5 = ringSideX.bdy\nbody6 = post.bdy\n")
+    cop = folder / "woodpecker.cop"
+    cop.write_text(cop.read_text() + "[ringSideR:all]\nfriction = 0.1\n[post:all]\nfriction = 0.1\n")
+    model = load_model(folder, compile=False)
+    pairs = {frozenset((model.bodies[p.first].name, model.bodies[p.second].name)) for p in model.pairs}
+    assert frozenset(("ringSideR", "bird")) in pairs and frozenset(("post", "bird")) in pairs
+    for never in (("ringSideR", "ring"), ("ringSideR", "ringSideX"), ("post", "stick")):
+        assert frozenset(never) not in pairs

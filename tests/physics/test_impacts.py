@@ -55,8 +55,6 @@ def test_elastic_bounces_keep_the_mechanical_energy(tmp_path):
     assert result.lost[-1] == pytest.approx(0.0, abs=1e-6 * result.energy[0])
 
 
-@pytest.mark.xfail(strict=True, reason="contacts are detected within maxPen + f v dt_max only; with "
-                   "maximumDisplacementFactor f < 1 a vertex can cross the skin within one step unseen")
 def test_fast_ball_does_not_pass_the_skin_with_the_default_factor(tmp_path):
     result = run_folder(ball(0.8, 1.2, displacement_factor=0.5).write(tmp_path))
     lowest = result.q[:, 1] - RADIUS
