@@ -18,27 +18,36 @@ forces, velocities in place of accelerations) serves the compression and expansi
 from __future__ import annotations
 
 from mbds.kernel.jit import jit
-from mbds.kernel.linalg import cholesky_solve
+from mbds.kernel.linalg import cholesky_solve_row
 
 
 @jit
 def inverse_mass_rows(L, rows, count, Y):
     """Y[i] = M^-1 rows[i] for the first ``count`` rows (L: Cholesky factor of M)."""
     for i in range(count):
-        cholesky_solve(L, rows[i], Y[i])
+        cholesky_solve_row(L, rows, i, Y)
 
 
-@jit
-def dot(a, b):
-    """Dot product of two vectors of equal length."""
+@jit(inline="always")
+def rows_dot(A, i, B, j):
+    """sum_k A[i, k] B[j, k] (row i of A with row j of B, no array views)."""
     s = 0.0
-    for k in range(a.shape[0]):
-        s += a[k] * b[k]
+    for k in range(A.shape[1]):
+        s += A[i, k] * B[j, k]
+    return s
+
+
+@jit(inline="always")
+def row_dot(A, i, v):
+    """sum_k A[i, k] v[k]."""
+    s = 0.0
+    for k in range(A.shape[1]):
+        s += A[i, k] * v[k]
     return s
 
 
 @jit
-def build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_flat):
+def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_flat):
     """Fill the matrix A (size m = na + 2 nh, row-major in A_flat[:m * m]) for the contacts
     active[:na]; return nh.
 
@@ -52,7 +61,7 @@ def build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_fl
         if stick[c]:
             hrow[nh] = a
             nh += 1
-        f = mu[c] * (1.0 if stick[c] else sign[c])
+        f = laws[c, 0] * (1.0 if stick[c] else sign[c])
         for k in range(n):
             column[a, k] = YN[c, k] - f * YT[c, k]
     m = na + 2 * nh
@@ -63,32 +72,32 @@ def build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_fl
     for i in range(na):
         ci = active[i]
         for j in range(na):
-            A[i, j] = dot(WN[ci], column[j])
+            A[i, j] = rows_dot(WN, ci, column, j)
         for h in range(nh):
-            A[i, na + h] = dot(WN[ci], YT[active[hrow[h]]])
+            A[i, na + h] = rows_dot(WN, ci, YT, active[hrow[h]])
     for g in range(nh):
         cg = active[hrow[g]]
         r = na + g
         for j in range(na):
-            A[r, j] = dot(WT[cg], column[j])
+            A[r, j] = rows_dot(WT, cg, column, j)
         for h in range(nh):
-            A[r, na + h] = dot(WT[cg], YT[active[hrow[h]]])
+            A[r, na + h] = rows_dot(WT, cg, YT, active[hrow[h]])
         A[r, na + nh + g] = 1.0
         r2 = na + nh + g
-        A[r2, hrow[g]] = 2.0 * mu[cg]
+        A[r2, hrow[g]] = 2.0 * laws[cg, 0]
         A[r2, na + g] = -1.0
     return nh
 
 
 @jit
-def tangential_forces(active, na, stick, sign, mu, z, lam_n, lam_t):
+def tangential_forces(active, na, stick, sign, laws, z, lam_n, lam_t):
     """Normal and tangential forces (or impulses) of the active contacts from an LCP solution z."""
     h = 0
     for a in range(na):
         c = active[a]
         lam_n[c] = z[a]
         if stick[c]:
-            lam_t[c] = z[na + h] - mu[c] * z[a]
+            lam_t[c] = z[na + h] - laws[c, 0] * z[a]
             h += 1
         else:
-            lam_t[c] = -mu[c] * sign[c] * z[a]
+            lam_t[c] = -laws[c, 0] * sign[c] * z[a]

@@ -97,12 +97,13 @@ def _pair_contacts(
     if x0 > x1 or y0 > y1:
         return count
     npts = world.shape[0]
-    vertices = work[:npts]
-    edges = work[npts : 2 * npts]
+    edges = npts  # work layout (no array views): vertices, edges, bucket starts, bucket members
+    starts = 2 * npts
+    members = 2 * npts + 1025
     nv = 0
     for i in range(point_start[vb], point_start[vb + 1] - 1):
         if x0 <= world[i, 0] <= x1 and y0 <= world[i, 1] <= y1:
-            vertices[nv] = i
+            work[nv] = i
             nv += 1
     if nv == 0:
         return count
@@ -111,7 +112,7 @@ def _pair_contacts(
         ex0, ex1 = min(world[j, 0], world[j + 1, 0]), max(world[j, 0], world[j + 1, 0])
         ey0, ey1 = min(world[j, 1], world[j + 1, 1]), max(world[j, 1], world[j + 1, 1])
         if ex1 + reach >= x0 and ex0 - reach <= x1 and ey1 + reach >= y0 and ey0 - reach <= y1:
-            edges[ne] = j
+            work[edges + ne] = j
             ne += 1
     if ne == 0:
         return count
@@ -123,46 +124,43 @@ def _pair_contacts(
     if span <= 0.0:
         nb = 1
     width = span / nb if nb > 1 else 1.0
-    start = work[2 * npts : 2 * npts + nb + 1]
-    members = work[2 * npts + 1025 :]
     for k in range(nb + 1):
-        start[k] = 0
+        work[starts + k] = 0
+    room = work.shape[0] - members
     for pass_ in range(2):
         if pass_ == 1:
             total = 0
             for k in range(nb):
-                c = start[k]
-                start[k] = total
+                c = work[starts + k]
+                work[starts + k] = total
                 total += c
-            start[nb] = total
-            if total > members.shape[0]:
+            work[starts + nb] = total
+            if total > room:  # too many bucket entries: one bucket with every edge
                 nb = 1
-                start[0] = 0
-                start[1] = ne
+                work[starts] = 0
+                work[starts + 1] = ne
                 for e in range(ne):
-                    members[e] = edges[e]
+                    work[members + e] = work[edges + e]
                 break
         for e in range(ne):
-            j = edges[e]
+            j = work[edges + e]
             a = min(world[j, axis], world[j + 1, axis]) - reach
             b = max(world[j, axis], world[j + 1, axis]) + reach
-            k0 = _bucket(a, lo, width, nb)
-            k1 = _bucket(b, lo, width, nb)
-            for k in range(k0, k1 + 1):
+            for k in range(_bucket(a, lo, width, nb), _bucket(b, lo, width, nb) + 1):
                 if pass_ == 0:
-                    start[k] += 1
+                    work[starts + k] += 1
                 else:
-                    members[start[k]] = j
-                    start[k] += 1
+                    work[members + work[starts + k]] = j
+                    work[starts + k] += 1
         if pass_ == 1:
             for k in range(nb, 0, -1):
-                start[k] = start[k - 1]
-            start[0] = 0
+                work[starts + k] = work[starts + k - 1]
+            work[starts] = 0
     for v in range(nv):
-        i = vertices[v]
+        i = work[v]
         k = _bucket(world[i, axis], lo, width, nb)
-        for m in range(start[k], start[k + 1]):
-            j = members[m]
+        for m in range(work[starts + k], work[starts + k + 1]):
+            j = work[members + m]
             xi, gap, nx, ny = vertex_edge(world, i, j)
             if xi < 0.0 or xi > 1.0:
                 continue
@@ -185,7 +183,7 @@ def _pair_contacts(
     return count
 
 
-@jit
+@jit(inline="always")
 def _bucket(value, lo, width, nb):
     if nb == 1:
         return 0
@@ -193,7 +191,7 @@ def _bucket(value, lo, width, nb):
     return min(max(k, 0), nb - 1)
 
 
-@jit
+@jit(inline="always")
 def vertex_edge(world, i, j):
     """(xi, gap, n_x, n_y) of world point i against the edge from point j to point j + 1."""
     qx, qy = world[j, 0], world[j, 1]

@@ -46,3 +46,19 @@ def cholesky_solve(L, b, x):
         for k in range(i + 1, n):
             s -= L[k, i] * x[k]
         x[i] = s / L[i, i]
+
+
+@jit(inline="always")
+def cholesky_solve_row(L, B, i, X):
+    """X[i] = A^-1 B[i] for A = L L^T (rows i of B and X, without array views)."""
+    n = L.shape[0]
+    for r in range(n):
+        s = B[i, r]
+        for k in range(r):
+            s -= L[r, k] * X[i, k]
+        X[i, r] = s / L[r, r]
+    for r in range(n - 1, -1, -1):
+        s = X[i, r]
+        for k in range(r + 1, n):
+            s -= L[k, r] * X[i, k]
+        X[i, r] = s / L[r, r]

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mbds.kernel.contact_problem import build_matrix, dot, inverse_mass_rows, tangential_forces
+from mbds.kernel.contact_problem import build_matrix, inverse_mass_rows, row_dot, rows_dot, tangential_forces
 from mbds.kernel.detection import bounding_boxes, contact_geometry, detect_contacts, world_points
 from mbds.kernel.jit import jit
 from mbds.kernel.kinematics import body_states, contact_kinematics
@@ -91,7 +91,7 @@ def advance(
      WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t, laws,
      M, L, hv, minv_h, YN, YT, column, hrow, active, stick, sign, A_flat, bvec, z, w, fwork, iwork,
      lam_n, lam_t, lam_n1, lam_t1, imp_n, imp_t, gam_n, gam_t, compression_loss, a1, a2, q_star, u_star,
-     backup_q, backup_u, backup_clock, records_int, records_float, record_count, last_sample) = ws
+     backup_q, backup_u, backup_clock, records_int, records_float, record_count, last_sample, law_out) = ws
     n = q.shape[0]
     while True:
         t = clock[T]
@@ -131,7 +131,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 contact_kinematics(nc, c_vb, c_eb, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
                                    WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t)
-                _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t)
+                _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, law_out, laws, events, t)
                 if not _dynamics(mass_matrix, h_vector, q, u, t, p, M, L, hv, minv_h, WN, WT, YN, YT, nc):
                     return NOT_FINITE
                 _contact_forces(nc, c_gap, gd_n, gd_t, settings, settings[LEXICO], active, stick, sign, laws,
@@ -154,7 +154,7 @@ def advance(
             tol_lex = settings[LEXICO]
         contact_kinematics(nc, c_vb, c_eb, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
                            WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t)
-        _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t)
+        _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, law_out, laws, events, t)
         if not _dynamics(mass_matrix, h_vector, q, u, t, p, M, L, hv, minv_h, WN, WT, YN, YT, nc):
             _event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
@@ -187,12 +187,12 @@ def advance(
         dt = min(1.5 * clock[DT], settings[DT_MAX])
         for i in range(nc):
             if c_gap[i] > CLOSED_FRACTION * settings[MAX_PEN]:  # open: reach at most half maxPen
-                accel = dot(WN[i], a1) + wbar_n[i]
+                accel = row_dot(WN, i, a1) + wbar_n[i]
                 dt = min(dt, _time_to_reach(c_gap[i] + 0.5 * settings[MAX_PEN], gd_n[i], accel))
         for a in range(na):  # a sliding contact stops at the end of the step, not beyond
             i = active[a]
             if not stick[i]:
-                accel = dot(WT[i], a1) + wbar_t[i]
+                accel = row_dot(WT, i, a1) + wbar_t[i]
                 if gd_t[i] * accel < 0.0:
                     dt = min(dt, -gd_t[i] / accel)
         dt = max(dt, settings[DT_MIN])
@@ -248,11 +248,13 @@ def advance(
 
 
 @jit(inline="always")
-def _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, laws, events, t):
+def _laws(contact_law, nc, c_pair, pair_law, pair_temperature, gd_t, p, law_out, laws, events, t):
     """Friction and restitution coefficients of every contact at its current sliding speed."""
     for i in range(nc):
-        if not _contact_law(contact_law, pair_law[c_pair[i]], abs(gd_t[i]), pair_temperature[c_pair[i]], p, laws[i]):
+        if not _contact_law(contact_law, pair_law[c_pair[i]], abs(gd_t[i]), pair_temperature[c_pair[i]], p, law_out):
             _event(events, t, EVENT_BAD_LAW, float(c_pair[i]), abs(gd_t[i]))
+        for j in range(4):
+            laws[i, j] = law_out[j]
 
 
 @jit
@@ -364,21 +366,20 @@ def _accelerations(na, active, stick, sign, laws, WN, WT, YN, YT, minv_h, wbar_n
                    column, hrow, A_flat, bvec, z, w, fwork, iwork, lam_n, lam_t, acc, events, t):
     """Contact forces of the active contacts and the accelerations acc = M^-1 (h + W lambda)."""
     n = acc.shape[0]
-    mu = laws[:, 0]
-    nh = build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_flat)
+    nh = build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_flat)
     m = na + 2 * nh
     for a in range(na):
-        bvec[a] = dot(WN[active[a]], minv_h) + wbar_n[active[a]]
+        bvec[a] = row_dot(WN, active[a], minv_h) + wbar_n[active[a]]
     for g in range(nh):
         c = active[hrow[g]]
-        bvec[na + g] = dot(WT[c], minv_h) + wbar_t[c]
+        bvec[na + g] = row_dot(WT, c, minv_h) + wbar_t[c]
         bvec[na + nh + g] = 0.0
     ok = _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t)
     for a in range(na):
         lam_n[active[a]] = 0.0
         lam_t[active[a]] = 0.0
     if ok:
-        tangential_forces(active, na, stick, sign, mu, z, lam_n, lam_t)
+        tangential_forces(active, na, stick, sign, laws, z, lam_n, lam_t)
     for k in range(n):
         acc[k] = minv_h[k]
     for a in range(na):
@@ -407,8 +408,7 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
             sign[i] = 0.0
             gam_n[i] = gd_n[i]  # gamma_A
             gam_t[i] = gd_t[i]
-    mu = laws[:, 0]
-    nh = build_matrix(active, na, stick, sign, mu, WN, WT, YN, YT, column, hrow, A_flat)
+    nh = build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_flat)
     m = na + 2 * nh
     for a in range(na):  # compression: b = (gamma_NA, gamma_TA, 0)
         c = active[a]
@@ -417,7 +417,7 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
         bvec[2 * na + a] = 0.0
     if not _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t):
         return False
-    tangential_forces(active, na, stick, sign, mu, z, imp_n, imp_t)
+    tangential_forces(active, na, stick, sign, laws, z, imp_n, imp_t)
     _apply_impulses(active, na, imp_n, imp_t, YN, YT, u)
     _relative_velocities(active, na, WN, WT, what_n, what_t, u, gd_n, gd_t)
     # expansion: start from eN Lambda_NC (with its -mu tangential partner) and eT Lambda_TC;
@@ -425,24 +425,24 @@ def _impact(nc, c_gap, gd_n, gd_t, what_n, what_t, WN, WT, YN, YT, laws, u, sett
     for a in range(na):
         c = active[a]
         lam_ne[c] = laws[c, 1] * imp_n[c]
-        lam_te[c] = laws[c, 2] * imp_t[c] - mu[c] * lam_ne[c]
+        lam_te[c] = laws[c, 2] * imp_t[c] - laws[c, 0] * lam_ne[c]
     for a in range(na):
         c = active[a]
         sn = gd_n[c]
         st = gd_t[c]
         for b in range(na):
             e = active[b]
-            sn += dot(WN[c], YN[e]) * lam_ne[e] + dot(WN[c], YT[e]) * lam_te[e]
-            st += dot(WT[c], YN[e]) * lam_ne[e] + dot(WT[c], YT[e]) * lam_te[e]
+            sn += rows_dot(WN, c, YN, e) * lam_ne[e] + rows_dot(WN, c, YT, e) * lam_te[e]
+            st += rows_dot(WT, c, YN, e) * lam_ne[e] + rows_dot(WT, c, YT, e) * lam_te[e]
         bvec[a] = sn
         bvec[na + a] = st
-        bvec[2 * na + a] = 2.0 * mu[c] * lam_ne[c]
+        bvec[2 * na + a] = 2.0 * laws[c, 0] * lam_ne[c]
     expanded = _solve(m, A_flat, bvec, z, w, fwork, iwork, settings, tol_lex, events, t)
     for a in range(na):
         c = active[a]
         if expanded:
             lam_ne[c] += z[a]
-            lam_te[c] = laws[c, 2] * imp_t[c] + z[na + a] - mu[c] * lam_ne[c]
+            lam_te[c] = laws[c, 2] * imp_t[c] + z[na + a] - laws[c, 0] * lam_ne[c]
         else:  # keep the compression result: a plastic impact
             lam_ne[c] = 0.0
             lam_te[c] = 0.0
@@ -480,8 +480,8 @@ def _apply_impulses(active, na, imp_n, imp_t, YN, YT, u):
 def _relative_velocities(active, na, WN, WT, what_n, what_t, u, gd_n, gd_t):
     for a in range(na):
         c = active[a]
-        gd_n[c] = dot(WN[c], u) + what_n[c]
-        gd_t[c] = dot(WT[c], u) + what_t[c]
+        gd_n[c] = row_dot(WN, c, u) + what_n[c]
+        gd_t[c] = row_dot(WT, c, u) + what_t[c]
 
 
 @jit
@@ -496,7 +496,7 @@ def _event(events, t, code, a, b):
         count[0] = k + 1
 
 
-@jit
+@jit(inline="always")
 def _record(vertex, edge, edge_end, xi, nx, ny, imp_n, imp_t, loss, point_loss, point_interval,
             records_int, records_float, record_count):
     """Add a contact's impulses (N s) and lost work (J) of this step to its points, and keep
@@ -506,9 +506,11 @@ def _record(vertex, edge, edge_end, xi, nx, ny, imp_n, imp_t, loss, point_loss, 
     impulse reversed (the reaction). Impulses are normal-tangential (n out of the edge body,
     t = (-n_y, n_x)) and x-y, as acting on the watched point's body.
     """
-    k = record_count[1]
-    if k < 0:
-        k = 0
+    imp_x = imp_n * nx - imp_t * ny
+    imp_y = imp_n * ny + imp_t * nx
+    angle = np.arctan2(ny, nx)
+    _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, 1.0, point_loss, point_interval)
+    k = max(record_count[1], 0)
     if k < records_int.shape[1]:
         records_int[1, k, 0] = vertex
         records_int[1, k, 1] = edge
@@ -516,46 +518,50 @@ def _record(vertex, edge, edge_end, xi, nx, ny, imp_n, imp_t, loss, point_loss, 
         records_float[1, k, R_XI] = xi
         records_float[1, k, R_IMP_N] = imp_n
         records_float[1, k, R_IMP_T] = imp_t
-        records_float[1, k, R_IMP_X] = imp_n * nx - imp_t * ny
-        records_float[1, k, R_IMP_Y] = imp_n * ny + imp_t * nx
+        records_float[1, k, R_IMP_X] = imp_x
+        records_float[1, k, R_IMP_Y] = imp_y
         records_float[1, k, R_LOSS] = loss
-        records_float[1, k, R_ANGLE] = np.arctan2(ny, nx)
-        _add_record(records_int[1, k], records_float[1, k], 1.0, point_loss, point_interval)
+        records_float[1, k, R_ANGLE] = angle
         record_count[1] = k + 1
-    else:  # no room to keep it: add it, and make this step final
+    else:  # no room to keep it: this step becomes final
         record_count[1] = -1
         record_count[0] = -1
-        tmp = np.array([xi, imp_n, imp_t, imp_n * nx - imp_t * ny, imp_n * ny + imp_t * nx, loss, np.arctan2(ny, nx)])
-        _add_record(np.array([vertex, edge, edge_end]), tmp, 1.0, point_loss, point_interval)
 
 
-@jit
+@jit(inline="always")
 def _edge_end(edge, body, point_start):
     """The point an edge ends at: the next point, or the body's first for its closing edge."""
     end = edge + 1
     return point_start[body] if end == point_start[body + 1] - 1 else end
 
 
-@jit
-def _add_record(ints, floats, scale, point_loss, point_interval):
-    """Add (scale 1) or take out (scale -1) one record (vertex, edge start, edge end points)
-    from the per-point accumulators."""
-    xi = floats[R_XI]
-    _add_point(ints[0], 1.0 * scale, 1.0, floats, point_loss, point_interval)
-    _add_point(ints[1], (1.0 - xi) * scale, -1.0, floats, point_loss, point_interval)
-    _add_point(ints[2], xi * scale, -1.0, floats, point_loss, point_interval)
+@jit(inline="always")
+def _take_out(records_int, records_float, slot, k, point_loss, point_interval):
+    """Take record k of ``slot`` out of the per-point accumulators."""
+    r = records_float
+    _add_contact(records_int[slot, k, 0], records_int[slot, k, 1], records_int[slot, k, 2], r[slot, k, R_XI],
+                 r[slot, k, R_IMP_N], r[slot, k, R_IMP_T], r[slot, k, R_IMP_X], r[slot, k, R_IMP_Y],
+                 r[slot, k, R_LOSS], r[slot, k, R_ANGLE], -1.0, point_loss, point_interval)
 
 
-@jit
-def _add_point(point, share, direction, floats, point_loss, point_interval):
-    point_loss[point] += share * floats[R_LOSS]
-    point_interval[point, IMP_N] += share * floats[R_IMP_N]
-    point_interval[point, IMP_T] += share * direction * floats[R_IMP_T]
-    point_interval[point, IMP_X] += share * direction * floats[R_IMP_X]
-    point_interval[point, IMP_Y] += share * direction * floats[R_IMP_Y]
-    point_interval[point, WORK] += share * floats[R_LOSS]
+@jit(inline="always")
+def _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, scale, point_loss, point_interval):
+    """Add (scale 1) or take out (scale -1) a contact's share at its vertex and edge points."""
+    _add_point(vertex, scale, 1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+    _add_point(edge, (1.0 - xi) * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+    _add_point(edge_end, xi * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+
+
+@jit(inline="always")
+def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval):
+    point_loss[point] += share * loss
+    point_interval[point, IMP_N] += share * imp_n
+    point_interval[point, IMP_T] += share * direction * imp_t
+    point_interval[point, IMP_X] += share * direction * imp_x
+    point_interval[point, IMP_Y] += share * direction * imp_y
+    point_interval[point, WORK] += share * loss
     if share > 0.0:
-        point_interval[point, ANGLE] = floats[R_ANGLE] if direction > 0.0 else floats[R_ANGLE] + np.pi
+        point_interval[point, ANGLE] = angle if direction > 0.0 else angle + np.pi
 
 
 @jit
@@ -588,7 +594,7 @@ def _go_back(slot, q, u, clock, point_loss, point_interval, backup_q, backup_u, 
     taking the records of the steps undone out of the accumulators; counters keep counting."""
     for s in range(1, slot - 1, -1):
         for k in range(max(record_count[s], 0)):
-            _add_record(records_int[s, k], records_float[s, k], -1.0, point_loss, point_interval)
+            _take_out(records_int, records_float, s, k, point_loss, point_interval)
     keep = np.empty(6)
     for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
         keep[j] = clock[c]

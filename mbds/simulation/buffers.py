@@ -79,7 +79,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int) -
         ("compression_loss", (c,), f), ("a1", (n,), f), ("a2", (n,), f), ("q_star", (n,), f), ("u_star", (n,), f),
         ("backup_q", (2, n), f), ("backup_u", (2, n), f), ("backup_clock", (2, K.CLOCK), f),
         ("records_int", (2, 2 * c, 3), i), ("records_float", (2, 2 * c, K.RECORD_COLUMNS), f),
-        ("record_count", (2,), i), ("last_sample", (1,), f),
+        ("record_count", (2,), i), ("last_sample", (1,), f), ("law_out", (4,), f),
     ]
     lcp = {"fwork": fwork, "iwork": iwork}
     arrays = {name: lcp[name] if name in lcp else np.zeros(shape, dtype=dtype) for name, shape, dtype in spec}
