@@ -43,7 +43,7 @@ def check(
     from mbds.cli.summary import print_summary
     from mbds.model.load import load_model
 
-    console = Console() if sys.stdout.isatty() else Console(width=140)
+    console = _console()
     with reported_errors(debug):
         for path in paths:
             model = load_model(path, version=version, compile=compile)
@@ -69,7 +69,41 @@ def run(
 
     if break_time is not None and not break_time > 0:
         raise typer.BadParameter("must be a positive time (s)", param_hint="--break-time")
-    console = Console() if sys.stdout.isatty() else Console(width=140)
+    console = _console()
     with reported_errors(debug):
         code = run_command(path, RunOptions(break_time, seed, start_from), console)
     raise typer.Exit(code)
+
+
+@app.command("next")
+def next_(
+    version: Path = typer.Argument(..., help="A version folder with a complete run (campaigns/wearballs/000)."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Create the next version of a model: the shapes worn by the losses of VERSION's run."""
+    from mbds.cli.job import next_command
+
+    with reported_errors(debug):
+        next_command(version, _console())
+
+
+@app.command()
+def job(
+    path: Path = typer.Argument(..., help="A job file (campaigns/wearballs/wearballs.job)."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Run the versions a job file lists, one after the other; run again to resume.
+
+    Exit codes: 0 every listed version complete, 1 stopped early (maxMinutesForJob(s),
+    maxLinesInLog, state not finite), 2 bad input, 130 interrupted by Ctrl-C.
+    """
+    from mbds.cli.job import job_command
+
+    with reported_errors(debug):
+        code = job_command(path, _console())
+    raise typer.Exit(code)
+
+
+def _console() -> Console:
+    """A console for the terminal, or a wide one for a file or pipe."""
+    return Console() if sys.stdout.isatty() else Console(width=140)

@@ -26,27 +26,39 @@ def run_command(path: Path, options: RunOptions, console: Console) -> int:
     folder = run_folder(path, options.start_from)
     console.print(f"running {escape(str(folder))}", highlight=False)
     wall = time.perf_counter()
-    with _interrupt_flag() as interrupted, _progress_bar(console) as bar:
-        task = bar.add_task("", total=None, now=0.0, end=0.0, rate=0.0)
-
-        def progress(start, now, end, steps):
-            elapsed = max(time.perf_counter() - wall, 1e-9)
-            bar.update(task, total=end - start, completed=now - start, now=now, end=end, rate=steps / elapsed)
-            if interrupted.is_set():
-                raise KeyboardInterrupt
-
+    with interrupt_flag() as interrupted, progress_bar(console) as bar:
         try:
-            record = run_version(folder, options, progress)
+            record = run_version(folder, options, track(bar, interrupted))
         except KeyboardInterrupt:  # a second Ctrl-C
             console.print("interrupted; nothing written", style="yellow")
             return EXIT_INTERRUPTED
-    _print_summary(record, folder, time.perf_counter() - wall, console)
+    print_run_summary(record, folder, time.perf_counter() - wall, console)
+    return exit_code(record)
+
+
+def exit_code(record: RunRecord) -> int:
+    """0 when the run reached its break time, 130 when Ctrl-C stopped it, else 1."""
     if record.complete:
         return 0
     return EXIT_INTERRUPTED if record.stopped == "interrupted" else EXIT_STOPPED
 
 
-def _progress_bar(console: Console) -> Progress:
+def track(bar: Progress, interrupted: threading.Event):
+    """A progress callback for :func:`run_version` that shows the run as a new task of ``bar``
+    (simulated time, steps per second of wall time) and stops it once ``interrupted`` is set."""
+    wall = time.perf_counter()
+    task = bar.add_task("", total=None, now=0.0, end=0.0, rate=0.0)
+
+    def progress(start, now, end, steps):
+        elapsed = max(time.perf_counter() - wall, 1e-9)
+        bar.update(task, total=end - start, completed=now - start, now=now, end=end, rate=steps / elapsed)
+        if interrupted.is_set():
+            raise KeyboardInterrupt
+
+    return progress
+
+
+def progress_bar(console: Console) -> Progress:
     """Simulated time against end time and steps per second; silent when not on a terminal."""
     return Progress(
         TextColumn("t = {task.fields[now]:.6g} / {task.fields[end]:.6g} s"),
@@ -60,7 +72,7 @@ def _progress_bar(console: Console) -> Progress:
 
 
 @contextlib.contextmanager
-def _interrupt_flag():
+def interrupt_flag():
     """A flag set by the first Ctrl-C (a second one interrupts at once)."""
     flag = threading.Event()
     if threading.current_thread() is not threading.main_thread():
@@ -78,7 +90,8 @@ def _interrupt_flag():
         signal.signal(signal.SIGINT, previous)
 
 
-def _print_summary(r: RunRecord, folder: Path, wall: float, console: Console) -> None:
+def print_run_summary(r: RunRecord, folder: Path, wall: float, console: Console) -> None:
+    """Where the run ended, its counts, energies and wall time (s)."""
     c = r.counters
     if r.complete:
         console.print(f"break time reached at t = {r.end_time:.9g} s", highlight=False)

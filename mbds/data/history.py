@@ -3,6 +3,7 @@ ended in (group ``final_state``) for continuing it. The schema is documented in 
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 import numpy as np
@@ -132,23 +133,50 @@ def state_dataset(state: RunState) -> xr.Dataset:
 def read_final_state(path: str | Path) -> tuple[RunState, dict]:
     """The state a run ended in and the attributes of its ``history.nc``; ModelError when the
     file is missing or not a complete mbds history."""
+    with _opened(path, STATE_GROUP) as ds:
+        state = RunState(
+            clock=ds["clock"].values.copy(),
+            q=ds["q"].values.copy(),
+            u=ds["qd"].values.copy(),
+            rng=ds["rng"].values.astype(np.uint64),
+            point_loss=ds["point_loss"].values.copy(),
+            point_interval=ds["point_interval"].values.copy(),
+        )
+    if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
+        raise ModelError("written by an incompatible mbds version (its state has another layout)", path)
+    return state, read_attributes(path)
+
+
+def read_attributes(path: str | Path) -> dict:
+    """The global attributes of a ``history.nc`` (``complete``, ``end_time``, ...)."""
+    with _opened(path) as ds:
+        return dict(ds.attrs)
+
+
+def read_point_losses(path: str | Path) -> dict[str, np.ndarray]:
+    """The lost work (J) at each distinct shape point of each body during the run of a
+    ``history.nc``, by body name, in point order."""
+    with _opened(path) as ds:
+        bodies = [str(name) for name in ds["body"].values]
+        owner, number = ds["point_body"].values, ds["point_number"].values
+        loss = ds["point_lost_work"].values
+    losses = {}
+    for index, name in enumerate(bodies):
+        mine = owner == index
+        losses[name] = np.zeros(int(number[mine].max(initial=-1)) + 1)
+        losses[name][number[mine]] = loss[mine]
+    return losses
+
+
+@contextlib.contextmanager
+def _opened(path: str | Path, group: str | None = None):
+    """The dataset of ``history.nc`` (or of one of its groups); ModelError when the file is
+    missing or not an mbds history."""
     path = Path(path)
     if not path.is_file():
         raise ModelError(f"no {FILE_NAME} here: run this version first", path.parent)
     try:
-        with xr.open_dataset(path, group=STATE_GROUP, engine="netcdf4") as ds:
-            state = RunState(
-                clock=ds["clock"].values.copy(),
-                q=ds["q"].values.copy(),
-                u=ds["qd"].values.copy(),
-                rng=ds["rng"].values.astype(np.uint64),
-                point_loss=ds["point_loss"].values.copy(),
-                point_interval=ds["point_interval"].values.copy(),
-            )
-        with xr.open_dataset(path, engine="netcdf4") as ds:
-            attrs = dict(ds.attrs)
+        with xr.open_dataset(path, group=group, engine="netcdf4") as ds:
+            yield ds
     except (OSError, KeyError, ValueError) as exc:
         raise ModelError(f"not a readable mbds history ({exc})", path) from None
-    if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
-        raise ModelError("written by an incompatible mbds version (its state has another layout)", path)
-    return state, attrs

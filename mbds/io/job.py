@@ -8,7 +8,7 @@ from pathlib import Path
 
 from mbds.errors import ModelError, warn
 from mbds.io.ini import Located, find_section, format_settings, parse_ini, read_settings, setting, split_list
-from mbds.io.text import MAXINT
+from mbds.io.text import MAXINT, read_text
 
 
 @dataclass
@@ -29,12 +29,18 @@ class JobSettings:
 
 @dataclass
 class JobFile:
-    """A job file. ``versions`` is the expanded ``jobs`` list (3-digit version numbers)."""
+    """A job file. ``versions`` is the expanded ``jobs`` list (3-digit version numbers);
+    ``lines`` gives the line of each ``[main]`` key (lower case) and of ``[main]`` itself."""
 
     settings: JobSettings = field(default_factory=JobSettings)
     versions: list[int] = field(default_factory=list)
     extra_sections: dict = field(default_factory=dict)
     path: Path | None = field(default=None, compare=False)
+    lines: dict[str, int] = field(default_factory=dict, compare=False)
+
+    def line(self, key: str) -> int | None:
+        """The line of ``key`` in ``[main]``, else of the ``[main]`` header."""
+        return self.lines.get(key.lower(), self.lines.get("[main]"))
 
     def world_path(self) -> Path:
         """The world file: ``worldFile``, or the job file's name with ``.wld``."""
@@ -76,7 +82,8 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
     if main is None:
         raise ModelError("no [main] section", path, 1)
     settings = read_settings(JobSettings, main, path)
-    jobs_line = next((e.line for e in main.entries if e.key.lower() == "jobs"), None)
+    lines = {"[main]": main.line, **{e.key.lower(): e.line for e in main.entries}}
+    jobs_line = lines.get("jobs")
     versions = expand_versions(settings.jobs, path, jobs_line)
     if not versions:
         raise ModelError("'jobs' lists no versions (e.g. jobs = 000-013)", path, jobs_line or main.line)
@@ -94,7 +101,12 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
     lo, hi = settings.lexico_randomization_range
     if lo < 0 or hi < lo:
         raise ModelError("lexicoRandomizationRange must be 'min,max' with 0 <= min <= max", path, main.line)
-    return JobFile(settings, versions, extra, Path(path) if path else None)
+    return JobFile(settings, versions, extra, Path(path) if path else None, lines)
+
+
+def read_job(path: str | Path) -> JobFile:
+    """The job file at ``path``."""
+    return parse_job(read_text(path), path)
 
 
 def format_job(job: JobFile) -> str:

@@ -11,6 +11,7 @@ from mbds.data.history import FILE_NAME, read_final_state, write_history
 from mbds.data.legacy import HEADER_LINES, end_alert, event_alerts, write_legacy
 from mbds.data.record import RunRecord, make_record
 from mbds.errors import ModelError
+from mbds.io.job import JobSettings
 from mbds.kernel import stepper as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
@@ -25,11 +26,14 @@ PROGRESS_CHUNK = 256
 class RunOptions:
     """``duration``: length of the run (s), default the world's ``breakTime``; ``seed`` of the
     lexicographic tolerance draws (a continued run keeps the random state it starts from);
-    ``start_from``: the version whose end state the run starts from (None: the model's start)."""
+    ``start_from``: the version whose end state the run starts from (None: the model's start);
+    ``job``: the job settings that apply (``lexicoRandomizationRange``, ``maxLinesInLog``; None:
+    those of the model folder's job file)."""
 
     duration: float | None = None
     seed: int = 0
     start_from: int | None = None
+    job: JobSettings | None = None
 
 
 Progress = Callable[[float, float, float, float], None]
@@ -46,7 +50,7 @@ def run_version(folder: str | Path, options: RunOptions, progress: Progress | No
     if number is None:
         raise ModelError("not a version folder (000, 001, ...)", folder)
     model = load_model(folder, version=number)
-    job = job_settings(folder.parent, model.world_path.stem)
+    job = options.job if options.job is not None else job_settings(folder.parent, model.world_path.stem)
     state, seed = _start_state(model, folder, options)
     start = copy.deepcopy(state)
     t0 = float(state.clock[K.T])

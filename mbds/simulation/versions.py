@@ -14,8 +14,7 @@ from pathlib import Path
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import find_world, read_model_files, write_model_files
-from mbds.io.job import JobSettings, parse_job
-from mbds.io.text import read_text
+from mbds.io.job import JobSettings, read_job
 from mbds.model.load import assemble_model
 
 _VERSION = re.compile(r"\d{3}")
@@ -104,4 +103,4 @@ def job_settings(model_folder: str | Path, world_stem: str) -> JobSettings:
     named = folder / f"{world_stem}.job"
     jobs = sorted(folder.glob("*.job"))
     path = named if named.is_file() else (jobs[0] if len(jobs) == 1 else None)
-    return parse_job(read_text(path), path).settings if path else JobSettings()
+    return read_job(path).settings if path else JobSettings()

@@ -1,0 +1,195 @@
+"""Jobs (``.job`` files): the listed versions of a model run one after the other in one process,
+each complete version followed, with ``createNextVersionAtEnd = 1``, by its worn successor.
+
+A job resumes: a version whose run is complete (see :func:`incomplete`) is not run again, an
+incomplete one is run again in full, and a complete version without its successor gets one.
+The rules are stated in docs/wear.md ("Jobs").
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mbds.data.history import FILE_NAME as HISTORY
+from mbds.data.history import read_attributes, read_point_losses
+from mbds.data.record import RunRecord
+from mbds.errors import ModelError, ModelWarning
+from mbds.io.job import JobFile, read_job
+from mbds.model.load import load_model
+from mbds.simulation.run import RunStopped
+from mbds.simulation.version_run import Progress, RunOptions, run_version
+from mbds.simulation.versions import ensure_version, version_name, version_number
+from mbds.wear.version import create_next_version
+
+
+def incomplete(folder: str | Path) -> str:
+    """Why the version in ``folder`` has no complete run ("" when it has one: its ``history.nc``
+    says the run reached its break time, and the run lasted the world file's ``breakTime``)."""
+    folder = Path(folder)
+    path = folder / HISTORY
+    if not path.is_file():
+        return "not run yet"
+    attrs = read_attributes(path)
+    if not attrs.get("complete"):
+        return f"its run stopped at t = {attrs['end_time']:.9g} s ({attrs['stop_reason']})"
+    length = float(attrs["break_time"] - attrs["start_time"])
+    with warnings.catch_warnings():  # the run of the version repeats any warning
+        warnings.simplefilter("ignore", ModelWarning)
+        full = load_model(folder, version=version_number(folder) or 0, compile=False).break_time
+    if not math.isclose(length, full, rel_tol=1e-9):
+        return f"its run lasted {length:.9g} s, not the world file's breakTime of {full:.9g} s"
+    return ""
+
+
+def next_version(folder: str | Path) -> Path:
+    """Create version N + 1 from the complete run of version N in ``folder``: its shapes worn
+    by the lost work (J) at each shape point (docs/wear.md); return the new folder."""
+    folder = Path(folder)
+    if version_number(folder) is None:
+        raise ModelError("not a version folder (000, 001, ...)", folder)
+    if not folder.is_dir():
+        raise ModelError("no such version folder", folder)
+    reason = incomplete(folder)
+    if reason:
+        raise ModelError(f"{reason}; the next version needs a complete run of this one", folder / HISTORY)
+    return create_next_version(folder, read_point_losses(folder / HISTORY))
+
+
+class JobReport:
+    """What a job tells as it goes; this one says nothing. ``start`` may raise
+    KeyboardInterrupt to stop the job before a version, its progress callback to stop the run
+    (which is then written, incomplete)."""
+
+    def note(self, text: str) -> None:
+        """News of the job: a version skipped or created, nothing to do."""
+
+    def start(self, folder: Path, why: str) -> Progress | None:
+        """Version ``folder`` starts running (``why``: why it had no complete run); the
+        progress callback of its run."""
+        return None
+
+    def finish(self, folder: Path, record: RunRecord, wall: float) -> None:
+        """The run of version ``folder`` ended after ``wall`` s."""
+
+
+@dataclass
+class JobResult:
+    """What a job did: the runs (version, record, wall time in s) and the versions created, in
+    order; ``stopped`` says why it ended before its last version ("" when it did not)."""
+
+    runs: list[tuple[int, RunRecord, float]] = field(default_factory=list)
+    created: list[int] = field(default_factory=list)
+    stopped: str = ""
+
+
+def read_checked_job(path: str | Path) -> JobFile:
+    """The job file at ``path``, checked before anything runs: its world file exists, and each
+    listed version exists, is 000 (made from the model files) or is made by the version listed
+    just before it (its predecessor, with ``createNextVersionAtEnd = 1``)."""
+    path = Path(path)
+    if path.suffix.lower() != ".job":
+        raise ModelError("expected a .job file", path)
+    job = read_job(path)
+    world = job.world_path()
+    if not world.is_file():
+        raise ModelError(f"world file {world.name} not found", path, job.line("worldFile"))
+    previous = None
+    for number in job.versions:
+        made = number == 0 or (job.settings.create_next_version_at_end and previous == number - 1)
+        if not made and not _exists(path.parent / version_name(number)):
+            creates = "" if job.settings.create_next_version_at_end else " (createNextVersionAtEnd = 0)"
+            raise ModelError(
+                f"version {version_name(number)} does not exist and the version listed before it "
+                f"does not create it{creates}", path, job.line("jobs"))
+        previous = number
+    return job
+
+
+def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
+    """Run the job file at ``path``: every listed version without a complete run is run in full
+    from the model's start and, with ``createNextVersionAtEnd = 1``, every complete one without
+    a successor gets one. The job stops at the first run that does not complete (Ctrl-C,
+    ``maxMinutesForJob``, ``maxMinutesForJobs``, ``maxLinesInLog``, a state that is not
+    finite); bad input raises ModelError."""
+    report = report or JobReport()
+    job = read_checked_job(path)
+    folder, settings = job.path.parent, job.settings
+    result = JobResult()
+    listed = f"{job.path.name} ({_listing(job.versions)})"
+    if all(_done(folder / version_name(n), settings.create_next_version_at_end) for n in job.versions):
+        report.note(f"nothing to do: every version of {listed} has a complete run")
+        return result
+    if settings.delay_start_minutes:
+        report.note(f"waiting {settings.delay_start_minutes} min (delayStartMinutes)")
+        time.sleep(60.0 * settings.delay_start_minutes)
+    deadline = time.monotonic() + 60.0 * settings.max_minutes_for_jobs
+    for number in job.versions:
+        version = folder / version_name(number)
+        if number == 0:
+            ensure_version(folder, 0, job.world_path())
+        why = incomplete(version)
+        if not why:
+            report.note(f"{version}: complete, not run again")
+        elif time.monotonic() >= deadline:
+            result.stopped = f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min reached before {version}"
+            return result
+        else:
+            record, wall = _run(version, why, job, report, deadline)
+            result.runs.append((number, record, wall))
+            if not record.complete:
+                result.stopped = f"{version} stopped ({record.stopped})"
+                return result
+        if settings.create_next_version_at_end and not _exists(folder / version_name(number + 1)):
+            created = next_version(version)
+            result.created.append(number + 1)
+            report.note(f"created {created}, worn by the losses of {version_name(number)}")
+    return result
+
+
+def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: float) -> tuple[RunRecord, float]:
+    """Run ``version`` in full under the job's time limits; its record and wall time (s)."""
+    settings = job.settings
+    begun = time.monotonic()
+    own_deadline = begun + 60.0 * settings.max_minutes_for_job
+    shown = report.start(version, why)
+
+    def progress(start, now, end, steps):
+        clock = time.monotonic()
+        if clock > own_deadline:
+            raise RunStopped(f"maxMinutesForJob = {settings.max_minutes_for_job} min exceeded")
+        if clock > deadline:
+            raise RunStopped(f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min exceeded")
+        if shown is not None:
+            shown(start, now, end, steps)
+
+    record = run_version(version, RunOptions(job=settings), progress)
+    wall = time.monotonic() - begun
+    report.finish(version, record, wall)
+    return record, wall
+
+
+def _exists(version: Path) -> bool:
+    """Whether the version folder is there with its world file."""
+    return version.is_dir() and any(version.glob("*.wld"))
+
+
+def _done(version: Path, successor_needed: bool) -> bool:
+    """Whether a job has nothing left to do for ``version``."""
+    if successor_needed and not _exists(version.parent / version_name(version_number(version) + 1)):
+        return False
+    return _exists(version) and not incomplete(version)
+
+
+def _listing(versions: list[int]) -> str:
+    """``000-003, 007``: the versions, runs of consecutive numbers as ranges."""
+    parts, first = [], 0
+    for i in range(1, len(versions) + 1):
+        if i == len(versions) or versions[i] != versions[i - 1] + 1:
+            a, b = versions[first], versions[i - 1]
+            parts.append(version_name(a) if a == b else f"{version_name(a)}-{version_name(b)}")
+            first = i
+    return ", ".join(parts)
