@@ -48,9 +48,7 @@ class BodyOnFloor:
     (kg), centroidal inertia (kg m²), start pose (x, y, Rz) and velocity (m, rad; m/s, rad/s),
     gravity (gx, gy) (m/s²), friction coefficient and normal restitution; world settings: time
     steps (s), maximum penetration (m), history interval (in maximum steps), break time (s) and
-    ``maximumDisplacementFactor``. The factor is 2, not the default 0.5: contacts are detected
-    within maxPen + factor * v * dt_max, and a factor below 1 lets a fast vertex cross the
-    skin within one step unseen."""
+    ``maximumDisplacementFactor`` (the world file's default)."""
 
     shape: np.ndarray
     mass: float
@@ -66,7 +64,7 @@ class BodyOnFloor:
     history_every: int = 1
     history_each_step: bool = False
     break_time: float = 1.0
-    displacement_factor: float = 2.0
+    displacement_factor: float = 0.5
     extra: dict[str, str] = field(default_factory=dict)
 
     def write(self, folder: Path) -> Path:

@@ -4,6 +4,7 @@ oblique impact with friction. Gravity is (c'gx, c'gy); see :mod:`tests.physics.m
 import numpy as np
 import pytest
 
+from mbds.kernel import stepper as K
 from tests.physics.models import BodyOnFloor, energy_residual, rectangle, regular_polygon, run_folder
 
 pytestmark = pytest.mark.physics
@@ -114,3 +115,22 @@ def test_oblique_impact_of_a_flat_block_with_friction(tmp_path, tangential):
     vx, vy, omega = expected
     lost = 0.5 * mass * (tangential**2 + normal**2 - vx**2 - vy**2) - 0.5 * inertia * omega**2
     assert result.lost[-1] == pytest.approx(lost, rel=1e-9)
+
+
+def test_going_back_after_lcp_failures(tmp_path):
+    """With a pivot limit too small for the contact LCPs, every contact step fails; with
+    TryToSolveByGoingBack the stepper returns two steps, halves the step and tries again (down to
+    the minimum step, then goes on without contact forces). The run still ends at its break time
+    with increasing sample times, and takes a different path than without going back."""
+    def run(going_back):
+        model = ball(0.5, 0.3)
+        model.extra = {"TryToSolveByGoingBack": "1" if going_back else "0"}
+        model.dt_min = 1e-6
+        return run_folder(model.write(tmp_path / f"back{going_back}"), 0.4, max_pivots=1)
+
+    plain, back = run(False), run(True)
+    for result in (plain, back):
+        assert result.complete and result.time[-1] == pytest.approx(0.4)
+        assert np.all(np.diff(result.time) > 0)
+        assert result.state.clock[K.LCP_FAILURES] > 0
+    assert back.state.clock[K.STEPS] > plain.state.clock[K.STEPS]  # the steps gone back are taken again
