@@ -25,7 +25,8 @@ from mbds.data.history import read_attributes
 from mbds.io.folder import read_model_files
 from mbds.model.geometry import polygon_properties
 from mbds.simulation.job import run_job
-from mbds.simulation.versions import existing_versions, version_name
+from mbds.io.folder import version_name
+from mbds.simulation.versions import existing_versions
 
 ROOT = Path(__file__).resolve().parents[1]
 BALLS = [f"ball{k}" for k in range(1, 6)]

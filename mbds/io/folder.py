@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -160,3 +162,32 @@ def write_model_files(files: ModelFiles, folder: str | Path, world_name: str | N
     for name, text in outputs:
         write_atomic(target.resolve(name), text)
     return target.path
+
+
+_VERSION = re.compile(r"\d{3}")
+
+
+def version_name(number: int) -> str:
+    """``000`` for 0: three digits."""
+    if not 0 <= number <= 999:
+        raise ModelError(f"version {number} is not between 000 and 999")
+    return f"{number:03d}"
+
+
+def version_number(folder: str | Path) -> int | None:
+    """The number of a version folder's name (``001`` -> 1), None for other names."""
+    name = Path(folder).name
+    return int(name) if _VERSION.fullmatch(name) else None
+
+
+def copy_model_files(files: ModelFiles, target: str | Path) -> None:
+    """Copy every file of the model, byte for byte (comments and layout kept), into ``target``,
+    at the same places relative to the world file's folder."""
+    source = files.world.path.parent.resolve()
+    for path in files.paths():
+        path = Path(path).resolve()
+        if not path.is_relative_to(source):
+            raise ModelError("a model file outside the world file's folder cannot be copied (workingDirectory?)", path)
+        destination = Path(target) / path.relative_to(source)
+        destination.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(path, destination)

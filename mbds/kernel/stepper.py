@@ -197,7 +197,11 @@ def advance(
                     dt = min(dt, -gd_t[i] / accel)
         dt = max(dt, settings[DT_MIN])
         clock[DT] = dt
-        dt = min(dt, clock[NEXT_SAMPLE] - t, until - t)
+        t2 = t + dt
+        target = min(clock[NEXT_SAMPLE], until)
+        if t2 >= target:  # land exactly on the sample time or the end
+            dt = target - t
+            t2 = target
         # --- 7: Heun step with the contact set of step 5
         power = 0.0
         drive = 0.0
@@ -210,7 +214,6 @@ def advance(
         for k in range(n):
             q_star[k] = q[k] + dt * u[k]
             u_star[k] = u[k] + dt * a1[k]
-        t2 = t + dt
         _kinematics(dependent_state, dependent_jacobian, binding, binding_index, start_pose, carrier, offset,
                     q_star, u_star, t2, p, zero, pose, vel, B, bhat, beta, dpos, dvel, dacc, djac, dsc)
         world_points(pose, points, point_start, world)

@@ -22,7 +22,8 @@ from mbds.io.job import JobFile, read_job
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
-from mbds.simulation.versions import ensure_version, version_name, version_number
+from mbds.io.folder import version_name, version_number
+from mbds.simulation.versions import ensure_version
 from mbds.wear.version import create_next_version
 
 

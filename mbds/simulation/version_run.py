@@ -16,7 +16,8 @@ from mbds.kernel import stepper as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import RunState, RunStopped, initial_state, simulate
-from mbds.simulation.versions import job_settings, version_name, version_number
+from mbds.io.folder import version_name, version_number
+from mbds.simulation.versions import job_settings
 
 PROGRESS_CHUNK = 256
 """History samples per call of the stepper: how often progress and Ctrl-C are looked at."""

@@ -5,7 +5,6 @@ its run."""
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import tempfile
 import warnings
@@ -13,25 +12,9 @@ from pathlib import Path
 
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
-from mbds.io.folder import find_world, read_model_files, write_model_files
+from mbds.io.folder import copy_model_files, find_world, read_model_files, version_name, version_number
 from mbds.io.job import JobSettings, read_job
 from mbds.model.load import assemble_model
-
-_VERSION = re.compile(r"\d{3}")
-
-
-def version_name(number: int) -> str:
-    """``000`` for 0: three digits."""
-    if not 0 <= number <= 999:
-        raise ModelError(f"version {number} is not between 000 and 999")
-    return f"{number:03d}"
-
-
-def version_number(folder: str | Path) -> int | None:
-    """The number of a version folder's name (``001`` -> 1), None for other names."""
-    name = Path(folder).name
-    return int(name) if _VERSION.fullmatch(name) else None
-
 
 def existing_versions(model_folder: str | Path) -> list[int]:
     """Numbers of the version folders present, in order."""
@@ -57,7 +40,7 @@ def ensure_version(model_folder: str | Path, number: int, source: str | Path | N
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=model_folder))
     try:
         staging.chmod(0o755)  # mkdtemp makes it private
-        write_model_files(files, staging)
+        copy_model_files(files, staging)
         if target.exists():
             target.rmdir()
         os.rename(staging, target)

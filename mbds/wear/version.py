@@ -20,7 +20,7 @@ import xarray as xr
 from mbds import __version__
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
-from mbds.io.folder import ModelFiles, read_model_files
+from mbds.io.folder import ModelFiles, copy_model_files, read_model_files, version_name, version_number
 from mbds.io.shape import ShapeFile, format_shape
 from mbds.io.text import write_atomic
 from mbds.wear.plan import WearPlan, plan_wear
@@ -28,49 +28,21 @@ from mbds.wear.plan import WearPlan, plan_wear
 WEAR_FILE = "wear.nc"
 
 
-def version_number(folder: Path) -> int:
-    """The version number of a version folder (its three-digit name)."""
-    name = Path(folder).name
-    if len(name) != 3 or not name.isdigit():
-        raise ModelError("a version folder is named with three digits (000, 001, ...)", folder)
-    return int(name)
-
-
-def model_file_paths(files: ModelFiles) -> list[Path]:
-    """Every file of the model that exists: world, bodies, shapes and the other model files."""
-    world = files.world
-    s = world.settings
-    names = [
-        s.constants_file, s.coordinates_file, s.dependent_coordinates_file, s.mass_matrix_file,
-        s.h_vector_file, s.mechanical_energy_file, s.contact_properties_file, s.watches_file,
-    ]
-    paths = [world.path, *(b.path for b in files.bodies), *(sh.path for sh in files.shapes)]
-    paths += [world.resolve(name) for name in names]
-    unique = []
-    for path in paths:
-        if path is not None and Path(path).exists() and Path(path) not in unique:
-            unique.append(Path(path))
-    return unique
-
-
 def create_next_version(folder: str | Path, losses: dict[str, np.ndarray]) -> Path:
     """Create version N + 1 beside version folder ``folder`` (version N) from the lost work per
     shape point of version N (``losses[body]``, J); return the new folder."""
     folder = Path(folder)
     version = version_number(folder)
-    target = folder.parent / f"{version + 1:03d}"
+    if version is None:
+        raise ModelError("a version folder is named with three digits (000, 001, ...)", folder)
+    target = folder.parent / version_name(version + 1)
     if target.exists():
         raise ModelError(f"version {version + 1:03d} exists already", target)
     files = read_model_files(folder)
     plan = plan_wear(files, losses, version)
     temporary = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=folder.parent))
     try:
-        for path in model_file_paths(files):
-            if not path.resolve().is_relative_to(folder.resolve()):
-                raise ModelError("model file outside its version folder (workingDirectory?)", path)
-            destination = temporary / path.relative_to(folder)
-            destination.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(path, destination)
+        copy_model_files(files, temporary)
         separator = files.separator
         for wear in plan.bodies:
             shape = next(s for b, s in zip(files.bodies, files.shapes) if b.main.name == wear.body)

@@ -1,10 +1,6 @@
 """`mbds job` and `mbds next`: resuming short and stopped runs, time limits, Ctrl-C, bad input."""
 
-import os
 import shutil
-import signal
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,6 +8,7 @@ from typer.testing import CliRunner
 
 from mbds.cli.main import app
 from mbds.data.history import read_attributes
+from tests.cli.test_run import ctrl_c
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -121,18 +118,8 @@ def test_ctrl_c_stops_the_version_and_the_job(tmp_path):
     text = world.read_text()
     world.write_text(text.replace(next(x for x in text.splitlines() if x.startswith("breakTime")), "breakTime = 1000"))
     (folder / "woodpecker.job").write_text("[main]\njobs = 000-001\ncreateNextVersionAtEnd = 1\n")
-    exe = Path(sys.executable).with_name("mbds")
-    child = subprocess.Popen(
-        [str(exe), "job", str(folder / "woodpecker.job")],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ.copy(),
-    )
-    try:
-        assert child.stdout.readline().startswith("running")
-        child.send_signal(signal.SIGINT)
-        out, err = child.communicate(timeout=120)
-    finally:
-        child.kill()
-    assert child.returncode == 130, err
+    code, out, err = ctrl_c("job", folder / "woodpecker.job", wait=0.0)
+    assert code == 130, err
     assert "job stopped" in out
     attrs = read_attributes(folder / "000" / "history.nc")
     assert attrs["complete"] == 0 and attrs["stop_reason"] == "interrupted"

@@ -102,21 +102,27 @@ def test_bad_options_exit_2(tmp_path, args, message):
     assert code == 2 and message in err
 
 
-def test_ctrl_c_keeps_the_results_marked_incomplete(tmp_path):
-    folder = example(tmp_path, "woodpecker")
+def ctrl_c(*args, wait=1.0):
+    """Run ``mbds ARGS`` in a subprocess, press Ctrl-C ``wait`` s after its first line
+    ("running ..."); its exit code, output and error output."""
     exe = Path(sys.executable).with_name("mbds")
     child = subprocess.Popen(
-        [str(exe), "run", str(folder), "--break-time", "1000"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ.copy(),
+        [str(exe), *map(str, args)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ.copy(),
     )
     try:
         assert child.stdout.readline().startswith("running")
-        time.sleep(1.0)
+        time.sleep(wait)
         child.send_signal(signal.SIGINT)
         out, err = child.communicate(timeout=120)
     finally:
         child.kill()
-    assert child.returncode == 130, err
+    return child.returncode, out, err
+
+
+def test_ctrl_c_keeps_the_results_marked_incomplete(tmp_path):
+    folder = example(tmp_path, "woodpecker")
+    code, out, err = ctrl_c("run", folder, "--break-time", 1000)
+    assert code == 130, err
     assert "incomplete" in out
     attrs = attributes(folder / "000" / "history.nc")
     assert attrs["complete"] == 0 and attrs["stop_reason"] == "interrupted" and 0 < attrs["end_time"] < 1000
