@@ -22,10 +22,9 @@ import time
 from pathlib import Path
 
 from mbds.data.history import read_attributes
-from mbds.io.folder import read_model_files
+from mbds.io.folder import read_model_files, version_name
 from mbds.model.geometry import polygon_properties
 from mbds.simulation.job import run_job
-from mbds.io.folder import version_name
 from mbds.simulation.versions import existing_versions
 
 ROOT = Path(__file__).resolve().parents[1]

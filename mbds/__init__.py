@@ -1,6 +1,7 @@
 """mbds: planar rigid multibody dynamics with unilateral contacts and run-in wear."""
 
-from importlib.metadata import PackageNotFoundError, version as _version
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
 
 try:
     __version__ = _version("mbds")

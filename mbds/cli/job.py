@@ -9,7 +9,15 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import Progress
 
-from mbds.cli.run import EXIT_INTERRUPTED, EXIT_STOPPED, exit_code, interrupt_flag, print_run_summary, progress_bar, track
+from mbds.cli.run import (
+    EXIT_INTERRUPTED,
+    EXIT_STOPPED,
+    exit_code,
+    interrupt_flag,
+    print_run_summary,
+    progress_bar,
+    track,
+)
 from mbds.data.record import RunRecord
 from mbds.simulation.job import JobReport, next_version, run_job
 

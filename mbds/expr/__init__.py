@@ -7,7 +7,13 @@
 See ``docs/expressions.md`` for the language itself.
 """
 
-from mbds.expr.codegen import CompiledModel, DependentCoordinate, ModelExpressions, compile_model, generate_source
+from mbds.expr.codegen import (
+    CompiledModel,
+    DependentCoordinate,
+    ModelExpressions,
+    compile_model,
+    generate_source,
+)
 from mbds.expr.parse import parse_expression
 
 __all__ = [

@@ -7,7 +7,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mbds.errors import ModelError, warn
-from mbds.io.ini import Located, find_section, format_settings, parse_ini, read_settings, setting, split_list
+from mbds.io.ini import (
+    Located,
+    find_section,
+    format_settings,
+    parse_ini,
+    read_settings,
+    setting,
+    split_list,
+)
 from mbds.io.text import MAXINT, read_text
 
 

@@ -8,7 +8,13 @@ from pathlib import Path
 import numpy as np
 
 from mbds.errors import ModelError, warn
-from mbds.io.text import format_number, is_directive, parse_integer, parse_number, significant_lines
+from mbds.io.text import (
+    format_number,
+    is_directive,
+    parse_integer,
+    parse_number,
+    significant_lines,
+)
 
 
 @dataclass

@@ -6,7 +6,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mbds.errors import ModelError, warn
-from mbds.io.ini import Located, find_section, format_settings, parse_ini, read_settings, setting
+from mbds.io.ini import (
+    Located,
+    find_section,
+    format_settings,
+    parse_ini,
+    read_settings,
+    setting,
+)
 from mbds.io.text import significant_lines
 
 

@@ -31,8 +31,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from mbds.kernel.contact_problem import build_matrix, inverse_mass_rows, row_dot, rows_dot, tangential_forces
-from mbds.kernel.detection import bounding_boxes, contact_geometry, detect_contacts, world_points
+from mbds.kernel.contact_problem import (
+    build_matrix,
+    inverse_mass_rows,
+    row_dot,
+    rows_dot,
+    tangential_forces,
+)
+from mbds.kernel.detection import (
+    bounding_boxes,
+    contact_geometry,
+    detect_contacts,
+    world_points,
+)
 from mbds.kernel.jit import jit
 from mbds.kernel.kinematics import body_states, contact_kinematics
 from mbds.kernel.lcp import SOLVED, lemke

@@ -65,6 +65,13 @@ def build_parameters(files: ModelFiles, bodies: list[Body]) -> tuple[Parameters,
     return Parameters(names, np.array(values, dtype=float), len(files.constants.values)), fixed
 
 
+_TOO_HIGH = {
+    0: "a velocity is not allowed here (mass matrix, dependent-coordinate position)",
+    1: "an acceleration is not allowed here (only a dependent coordinate's acceleration may use one)",
+    2: "a third time derivative is not allowed",
+}
+
+
 class ExpressionReader:
     """Parses located expressions of one model and checks the names they use."""
 
@@ -75,11 +82,15 @@ class ExpressionReader:
         self.free = {c.name for c in files.coordinates.coordinates if c.kind == "g"}
         self.free |= {c.coordinate.name for c in files.dependent.coordinates if c.coordinate.kind == "g"}
 
-    def read(self, item: Located, path: Path | None, *, contact: bool = False, constant_only: bool = False):
-        """The sympy expression of ``item``, or a :class:`ModelError` at its file and line."""
+    def read(self, item: Located, path: Path | None, *, contact: bool = False, constant_only: bool = False,
+             max_order: int = 1):
+        """The sympy expression of ``item``, or a :class:`ModelError` at its file and line;
+        ``max_order`` is the highest time derivative of a coordinate it may use."""
         expr = parse_expression(item.text, file=path, line=item.line, decimal_separator=self.separator)
         for obj in expr.free_symbols | expr.atoms(sympy.core.function.AppliedUndef):
             self._check(S.reference(obj), obj, path, item.line, contact, constant_only)
+        if S.derivative_order(expr) > max_order:
+            raise ModelError(_TOO_HIGH[max_order], path, item.line)
         return expr
 
     def _check(self, ref, obj, path, line, contact, constant_only):
@@ -126,16 +137,11 @@ def gather_expressions(files: ModelFiles, bodies: list[Body], laws: list[Contact
         )
     coordinates = [coordinate_symbol(c) for c in gc.coordinates]
     mmx = files.mass_matrix
-    mass_matrix = [[reader.read(e, mmx.path) for e in row] for row in mmx.rows]
+    mass_matrix = [[reader.read(e, mmx.path, max_order=0) for e in row] for row in mmx.rows]
     hv = files.h_vector
     h_vector = [reader.read(e, hv.path) for e in hv.expressions]
     energy = files.energy
     mechanical_energy = reader.read(energy.expressions[0], energy.path) if energy.expressions else None
-    for expr, item in zip(h_vector + ([mechanical_energy] if mechanical_energy is not None else []), hv.expressions + energy.expressions):
-        _check_order(expr, 1, hv.path if item in hv.expressions else energy.path, item.line)
-    for row, items in zip(mass_matrix, mmx.rows):
-        for expr, item in zip(row, items):
-            _check_order(expr, 0, mmx.path, item.line)
     dependent = [_dependent(c, coordinates, reader, files.dependent.path) for c in files.dependent.coordinates]
     contact_laws = []
     for law in laws:
@@ -161,25 +167,17 @@ def gather_expressions(files: ModelFiles, bodies: list[Body], laws: list[Contact
     return expressions, params
 
 
-def _check_order(expr, highest: int, path, line) -> None:
-    order = S.derivative_order(expr)
-    if order > highest:
-        what = "the mass matrix cannot use velocities" if highest == 0 else "accelerations are not allowed here"
-        raise ModelError(what, path, line)
-
-
 def _dependent(c, coordinates, reader: ExpressionReader, path) -> DependentCoordinate:
     """A dependent coordinate; velocity, acceleration, J and j are derived from the position
     where the file leaves them out, and checked against it where the file gives them."""
-    position = reader.read(c.definition[0], path)
-    _check_order(position, 0, path, c.definition[0].line)
+    position = reader.read(c.definition[0], path, max_order=0)
     velocity_d = sympy.diff(position, S.T)
     acceleration_d = sympy.diff(velocity_d, S.T)
     jacobian_d = [sympy.diff(position, q) for q in coordinates]
     scalar_d = acceleration_d.subs({sympy.Derivative(q, (S.T, 2)): 0 for q in coordinates})
     if len(c.definition) == 3:
         velocity = reader.read(c.definition[1], path)
-        acceleration = reader.read(c.definition[2], path)
+        acceleration = reader.read(c.definition[2], path, max_order=2)
     else:
         velocity, acceleration = velocity_d, acceleration_d
     if c.jacobian is not None:

@@ -18,11 +18,11 @@ from mbds.data.history import FILE_NAME as HISTORY
 from mbds.data.history import read_attributes, read_point_losses
 from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
+from mbds.io.folder import version_name, version_number
 from mbds.io.job import JobFile, read_job
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
-from mbds.io.folder import version_name, version_number
 from mbds.simulation.versions import ensure_version
 from mbds.wear.version import create_next_version
 

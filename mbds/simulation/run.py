@@ -10,7 +10,13 @@ from mbds.kernel import stepper as K
 from mbds.kernel.random import seeded_state
 from mbds.model.arrays import flatten
 from mbds.model.load import Model
-from mbds.simulation.buffers import RunSettings, history_buffers, model_tuple, settings_array, workspace
+from mbds.simulation.buffers import (
+    RunSettings,
+    history_buffers,
+    model_tuple,
+    settings_array,
+    workspace,
+)
 
 HISTORY_CHUNK = 4096
 EVENT_CHUNK = 1024

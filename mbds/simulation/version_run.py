@@ -11,12 +11,12 @@ from mbds.data.history import FILE_NAME, read_final_state, write_history
 from mbds.data.legacy import HEADER_LINES, end_alert, event_alerts, write_legacy
 from mbds.data.record import RunRecord, make_record
 from mbds.errors import ModelError
+from mbds.io.folder import version_name, version_number
 from mbds.io.job import JobSettings
 from mbds.kernel import stepper as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import RunState, RunStopped, initial_state, simulate
-from mbds.io.folder import version_name, version_number
 from mbds.simulation.versions import job_settings
 
 PROGRESS_CHUNK = 256

@@ -12,9 +12,16 @@ from pathlib import Path
 
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
-from mbds.io.folder import copy_model_files, find_world, read_model_files, version_name, version_number
+from mbds.io.folder import (
+    copy_model_files,
+    find_world,
+    read_model_files,
+    version_name,
+    version_number,
+)
 from mbds.io.job import JobSettings, read_job
 from mbds.model.load import assemble_model
+
 
 def existing_versions(model_folder: str | Path) -> list[int]:
     """Numbers of the version folders present, in order."""

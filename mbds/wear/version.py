@@ -20,7 +20,13 @@ import xarray as xr
 from mbds import __version__
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
-from mbds.io.folder import ModelFiles, copy_model_files, read_model_files, version_name, version_number
+from mbds.io.folder import (
+    ModelFiles,
+    copy_model_files,
+    read_model_files,
+    version_name,
+    version_number,
+)
 from mbds.io.shape import ShapeFile, format_shape
 from mbds.io.text import write_atomic
 from mbds.wear.plan import WearPlan, plan_wear
@@ -66,21 +72,31 @@ def wear_dataset(plan: WearPlan, files: ModelFiles, version: int) -> xr.Dataset:
     for wear in plan.bodies:
         old = next(s for b, s in zip(files.bodies, files.shapes) if b.main.name == wear.body).points
         dim = f"{wear.body}_point"
-        coords = {dim: wear.points}
-        data[f"{wear.body}_loss"] = xr.DataArray(wear.loss, coords, [dim], attrs={"units": "J", "long_name": f"lost work used for reshaping {wear.body}"})
-        data[f"{wear.body}_displacement"] = xr.DataArray(wear.displacement, coords, [dim], attrs={"units": "m", "long_name": f"displacement of the points of {wear.body} along their direction"})
+
+        def variable(values, units, long_name, dim=dim, points=wear.points):
+            return xr.DataArray(values, {dim: points}, [dim], attrs={"units": units, "long_name": long_name})
+
+        data[f"{wear.body}_loss"] = variable(wear.loss, "J", f"lost work used for reshaping {wear.body}")
+        data[f"{wear.body}_displacement"] = variable(
+            wear.displacement, "m", f"displacement of the points of {wear.body} along their direction"
+        )
         for axis, label in enumerate("xy"):
-            data[f"{wear.body}_direction_{label}"] = xr.DataArray(wear.direction[:, axis], coords, [dim], attrs={"units": "1", "long_name": f"reshaping direction, {label} (body frame)"})
-            data[f"{wear.body}_old_{label}"] = xr.DataArray(old[wear.points, axis], coords, [dim], attrs={"units": "m", "long_name": f"{label} before reshaping (body frame)"})
-            data[f"{wear.body}_new_{label}"] = xr.DataArray(wear.shape[wear.points, axis], coords, [dim], attrs={"units": "m", "long_name": f"{label} after reshaping (body frame)"})
+            data[f"{wear.body}_direction_{label}"] = variable(
+                wear.direction[:, axis], "1", f"reshaping direction, {label} (body frame)"
+            )
+            data[f"{wear.body}_old_{label}"] = variable(old[wear.points, axis], "m", f"{label} before reshaping (body frame)")
+            data[f"{wear.body}_new_{label}"] = variable(wear.shape[wear.points, axis], "m", f"{label} after reshaping (body frame)")
     names = list(plan.constants_after)
     if names:
-        data["constant_before"] = xr.DataArray([plan.constants_before[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": "constant in the source version"})
-        data["constant_after"] = xr.DataArray([plan.constants_after[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": "constant in the new version"})
+        for key, values, long_name in (
+            ("constant_before", plan.constants_before, "constant in the source version"),
+            ("constant_after", plan.constants_after, "constant in the new version"),
+        ):
+            data[key] = xr.DataArray([values[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": long_name})
     attrs = {
         "title": "mbds wear update",
-        "source_version": f"{version:03d}",
-        "new_version": f"{version + 1:03d}",
+        "source_version": version_name(version),
+        "new_version": version_name(version + 1),
         "mbds_version": __version__,
         "reshaped_bodies": ",".join(w.body for w in plan.bodies),
         "Conventions": "CF-1.10",

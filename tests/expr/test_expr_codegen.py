@@ -8,14 +8,20 @@ import subprocess
 import sys
 from pathlib import Path
 
+import expr_models
 import numba
 import numpy as np
 import pytest
 import sympy
 
-import expr_models
 from mbds.errors import ModelError
-from mbds.expr.codegen import SIGNATURES, DependentCoordinate, ModelExpressions, compile_model, generate_source
+from mbds.expr.codegen import (
+    SIGNATURES,
+    DependentCoordinate,
+    ModelExpressions,
+    compile_model,
+    generate_source,
+)
 from mbds.expr.parse import parse_expression
 from mbds.expr.symbols import TEMP, VREL, T, body_coordinate, constant
 

@@ -11,7 +11,15 @@ from hypothesis import strategies as st
 
 from mbds.errors import ModelError
 from mbds.expr.parse import parse_expression
-from mbds.expr.symbols import TEMP, VREL, T, body_coordinate, constant, generalized, mass_property
+from mbds.expr.symbols import (
+    TEMP,
+    VREL,
+    T,
+    body_coordinate,
+    constant,
+    generalized,
+    mass_property,
+)
 
 
 def D(f: sympy.Expr, order: int = 1) -> sympy.Expr:

@@ -9,7 +9,13 @@ from mbds.io.coordinates import (
     parse_coordinates,
     parse_dependent_coordinates,
 )
-from mbds.io.equations import format_expressions, format_matrix, parse_energy, parse_expressions, parse_matrix
+from mbds.io.equations import (
+    format_expressions,
+    format_matrix,
+    parse_energy,
+    parse_expressions,
+    parse_matrix,
+)
 from mbds.io.job import format_job, parse_job
 from mbds.io.shape import format_shape, parse_shape
 from mbds.io.watches import format_watches, parse_watches

@@ -5,7 +5,13 @@ from pathlib import Path
 
 import pytest
 
-from mbds.io.folder import copy_model_files, read_model_files, version_name, version_number, write_model_files
+from mbds.io.folder import (
+    copy_model_files,
+    read_model_files,
+    version_name,
+    version_number,
+    write_model_files,
+)
 
 CAMPAIGNS = Path(__file__).resolve().parents[2] / "campaigns"
 

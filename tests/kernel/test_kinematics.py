@@ -3,7 +3,13 @@
 import numpy as np
 import pytest
 
-from mbds.kernel.kinematics import DEPENDENT, FIXED, GENERALIZED, body_states, contact_kinematics
+from mbds.kernel.kinematics import (
+    DEPENDENT,
+    FIXED,
+    GENERALIZED,
+    body_states,
+    contact_kinematics,
+)
 
 # body 0: x, y, Rz = q0, q1, q2; body 1: x fixed, y dependent (rheonomic), Rz = q3;
 # body 2: virtual, carried by body 1 at an offset

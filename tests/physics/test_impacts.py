@@ -5,7 +5,13 @@ import numpy as np
 import pytest
 
 from mbds.kernel import stepper as K
-from tests.physics.models import BodyOnFloor, energy_residual, rectangle, regular_polygon, run_folder
+from tests.physics.models import (
+    BodyOnFloor,
+    energy_residual,
+    rectangle,
+    regular_polygon,
+    run_folder,
+)
 
 pytestmark = pytest.mark.physics
 

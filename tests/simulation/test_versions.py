@@ -7,7 +7,12 @@ import pytest
 
 from mbds.errors import ModelError
 from mbds.io.folder import read_model_files
-from mbds.simulation.versions import ensure_version, existing_versions, job_settings, run_folder
+from mbds.simulation.versions import (
+    ensure_version,
+    existing_versions,
+    job_settings,
+    run_folder,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 

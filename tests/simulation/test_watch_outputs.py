@@ -3,7 +3,12 @@
 import numpy as np
 import pytest
 
-from mbds.data.watches import distinct_points, smooth_closed, smooth_points, watch_series
+from mbds.data.watches import (
+    distinct_points,
+    smooth_closed,
+    smooth_points,
+    watch_series,
+)
 from mbds.io.watches import CommonOptions
 from mbds.kernel.stepper import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, POINT_COLUMNS, WORK
 
