@@ -165,6 +165,7 @@ def write_model_files(files: ModelFiles, folder: str | Path, world_name: str | N
 
 
 _VERSION = re.compile(r"\d{3}")
+_REPLICATE = re.compile(r"r\d+")
 
 
 def version_name(number: int) -> str:
@@ -178,6 +179,21 @@ def version_number(folder: str | Path) -> int | None:
     """The number of a version folder's name (``001`` -> 1), None for other names."""
     name = Path(folder).name
     return int(name) if _VERSION.fullmatch(name) else None
+
+
+def replicate_name(index: int) -> str:
+    """``r0``, ``r1``, ...: the folder of one replicate run inside a version folder (campaigns
+    in ensemble mode)."""
+    return f"r{index}"
+
+
+def run_number(folder: str | Path) -> int | None:
+    """The version a run folder belongs to: a version folder (``003`` -> 3) or a replicate
+    folder inside one (``003/r1`` -> 3); None for other folders."""
+    folder = Path(folder)
+    if _REPLICATE.fullmatch(folder.name):
+        return version_number(folder.parent)
+    return version_number(folder)
 
 
 def copy_model_files(files: ModelFiles, target: str | Path) -> None:

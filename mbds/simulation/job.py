@@ -11,15 +11,18 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+
+import numpy as np
 
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.data.history import read_attributes, read_point_losses
 from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
-from mbds.io.folder import version_name, version_number
-from mbds.io.job import JobFile, read_job
+from mbds.io.folder import run_number, version_name, version_number
+from mbds.io.job import JobFile, JobSettings, read_job
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
@@ -40,24 +43,38 @@ def incomplete(folder: str | Path) -> str:
     length = float(attrs["break_time"] - attrs["start_time"])
     with warnings.catch_warnings():  # the run of the version repeats any warning
         warnings.simplefilter("ignore", ModelWarning)
-        full = load_model(folder, version=version_number(folder) or 0, compile=False).break_time
+        full = load_model(folder, version=run_number(folder) or 0, compile=False).break_time
     if not math.isclose(length, full, rel_tol=1e-9):
         return f"its run lasted {length:.9g} s, not the world file's breakTime of {full:.9g} s"
     return ""
 
 
-def next_version(folder: str | Path) -> Path:
+def next_version(folder: str | Path, runs: Sequence[str | Path] = ()) -> Path:
     """Create version N + 1 from the complete run of version N in ``folder``: its shapes worn
-    by the lost work (J) at each shape point (docs/wear.md); return the new folder."""
+    by the lost work (J) at each shape point (docs/wear.md); return the new folder. With
+    ``runs`` (run folders of replicates of version N, campaigns in ensemble mode) the shapes
+    are worn by the mean over those runs of the lost work at each point."""
     folder = Path(folder)
     if version_number(folder) is None:
         raise ModelError("not a version folder (000, 001, ...)", folder)
     if not folder.is_dir():
         raise ModelError("no such version folder", folder)
-    reason = incomplete(folder)
-    if reason:
-        raise ModelError(f"{reason}; the next version needs a complete run of this one", folder / HISTORY)
-    return create_next_version(folder, read_point_losses(folder / HISTORY))
+    runs = [Path(run) for run in runs] or [folder]
+    for run in runs:
+        reason = incomplete(run)
+        if reason:
+            raise ModelError(f"{reason}; the next version needs a complete run of this one", run / HISTORY)
+    return create_next_version(folder, mean_point_losses([run / HISTORY for run in runs]))
+
+
+def mean_point_losses(paths: Sequence[Path]) -> dict[str, np.ndarray]:
+    """The lost work (J) at each shape point by body, averaged over the runs of the
+    ``history.nc`` files at ``paths`` (runs of one model)."""
+    losses = [read_point_losses(path) for path in paths]
+    for path, loss in zip(paths[1:], losses[1:]):
+        if {b: v.shape for b, v in loss.items()} != {b: v.shape for b, v in losses[0].items()}:
+            raise ModelError(f"its bodies or shape points differ from those of {paths[0]}", path)
+    return {body: np.mean([loss[body] for loss in losses], axis=0) for body in losses[0]}
 
 
 class JobReport:
@@ -153,10 +170,19 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
 
 def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: float) -> tuple[RunRecord, float]:
     """Run ``version`` in full under the job's time limits; its record and wall time (s)."""
-    settings = job.settings
     begun = time.monotonic()
-    own_deadline = begun + 60.0 * settings.max_minutes_for_job
     shown = report.start(version, why)
+    record = run_version(version, RunOptions(job=job.settings), time_limits(job.settings, deadline, shown))
+    wall = time.monotonic() - begun
+    report.finish(version, record, wall)
+    return record, wall
+
+
+def time_limits(settings: JobSettings, deadline: float = math.inf, shown: Progress | None = None) -> Progress:
+    """The progress callback of a run started now: it stops the run past ``maxMinutesForJob``
+    or past ``deadline`` (``time.monotonic()`` s, from ``maxMinutesForJobs``), and passes the
+    progress on to ``shown``."""
+    own_deadline = time.monotonic() + 60.0 * settings.max_minutes_for_job
 
     def progress(start, now, end, steps):
         clock = time.monotonic()
@@ -167,10 +193,7 @@ def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: flo
         if shown is not None:
             shown(start, now, end, steps)
 
-    record = run_version(version, RunOptions(job=settings), progress)
-    wall = time.monotonic() - begun
-    report.finish(version, record, wall)
-    return record, wall
+    return progress
 
 
 def _exists(version: Path) -> bool:

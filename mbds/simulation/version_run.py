@@ -11,7 +11,7 @@ from mbds.data.history import FILE_NAME, read_final_state, write_history
 from mbds.data.legacy import HEADER_LINES, end_alert, event_alerts, write_legacy
 from mbds.data.record import RunRecord, make_record
 from mbds.errors import ModelError
-from mbds.io.folder import version_name, version_number
+from mbds.io.folder import run_number, version_name
 from mbds.io.job import JobSettings
 from mbds.kernel import stepper as K
 from mbds.model.load import Model, load_model
@@ -42,14 +42,14 @@ Progress = Callable[[float, float, float, float], None]
 
 
 def run_version(folder: str | Path, options: RunOptions, progress: Progress | None = None) -> RunRecord:
-    """Run the version in ``folder`` and write history.nc, data.txt, watches.txt and log.txt
+    """Run the version in ``folder`` (or one replicate of it, ``NNN/rK``) and write history.nc, data.txt, watches.txt and log.txt
     there. ``progress`` may raise KeyboardInterrupt to stop the run: what was computed is
     written, marked incomplete, as when the state stops being finite. Raises ModelError on bad
     input."""
     folder = Path(folder)
-    number = version_number(folder)
+    number = run_number(folder)
     if number is None:
-        raise ModelError("not a version folder (000, 001, ...)", folder)
+        raise ModelError("not a version folder (000, 001, ...) or a replicate folder in one (000/r0)", folder)
     model = load_model(folder, version=number)
     job = options.job if options.job is not None else job_settings(folder.parent, model.world_path.stem)
     state, seed = _start_state(model, folder, options)

@@ -13,6 +13,7 @@ from pathlib import Path
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import (
+    ModelFiles,
     copy_model_files,
     find_world,
     read_model_files,
@@ -20,6 +21,7 @@ from mbds.io.folder import (
     version_number,
 )
 from mbds.io.job import JobSettings, read_job
+from mbds.io.text import write_atomic
 from mbds.model.load import assemble_model
 
 
@@ -34,20 +36,35 @@ def ensure_version(model_folder: str | Path, number: int, source: str | Path | N
     """The folder of version ``number``; when absent it is created from the files of ``source``
     (default: the model folder), which are read and checked first. The folder appears whole or
     not at all."""
-    model_folder = Path(model_folder)
-    target = model_folder / version_name(number)
+    target = Path(model_folder) / version_name(number)
     if target.is_dir() and any(target.glob("*.wld")):
         return target
-    if target.exists() and any(target.iterdir()):
-        raise ModelError("version folder without a .wld world file", target)
     with warnings.catch_warnings():  # the version's own files repeat any warning when they are loaded
         warnings.simplefilter("ignore", ModelWarning)
         files = read_model_files(source or model_folder)
+    return create_model_copy(target, files, number)
+
+
+def create_model_copy(target: str | Path, files: ModelFiles, number: int, texts: dict[str, str] | None = None) -> Path:
+    """Create folder ``target`` holding a byte-for-byte copy of the model ``files``, with
+    ``texts`` (by path relative to the world file's folder) written over their copies. The model
+    is checked first (as version ``number``), and the folder appears whole or not at all; an
+    existing copy (a folder with a ``.wld`` file) is left as it is."""
+    target = Path(target)
+    if target.is_dir() and any(target.glob("*.wld")):
+        return target
+    if target.exists() and any(target.iterdir()):
+        raise ModelError("a folder without a .wld world file is in the way", target)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
         assemble_model(files, number)  # bad input stops here, before anything is written
-    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=model_folder))
+    target.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
     try:
         staging.chmod(0o755)  # mkdtemp makes it private
         copy_model_files(files, staging)
+        for name, text in (texts or {}).items():
+            write_atomic(staging / name, text)
         if target.exists():
             target.rmdir()
         os.rename(staging, target)

@@ -1,0 +1,67 @@
+"""The ``[campaign]`` section of a job file (docs/campaigns.md): where the campaign lives, its
+seed, replicates and mode, and the keys whose values make the variants."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from mbds.campaign.variants import Parameter, is_parameter_key, parse_parameter
+from mbds.errors import ModelError
+from mbds.io.folder import ModelFiles
+from mbds.io.job import JobFile
+from mbds.io.text import parse_integer
+
+CHAINS, ENSEMBLE = "chains", "ensemble"
+
+
+@dataclass(frozen=True)
+class CampaignSection:
+    """``folder`` (relative to the job file), ``seed`` (of the replicates' seeds),
+    ``replicates`` (runs per variant), ``mode`` (chains or ensemble), the varied
+    ``parameters``, and ``line``: the section's first line in the job file (for errors)."""
+
+    folder: str = "campaign"
+    seed: int = 0
+    replicates: int = 1
+    mode: str = CHAINS
+    parameters: tuple[Parameter, ...] = ()
+    line: int | None = None
+
+
+def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
+    """The job's ``[campaign]`` section checked against the model ``files``; None without one."""
+    name = next((n for n in job.extra_sections if n.lower() == "campaign"), None)
+    if name is None:
+        return None
+    entries = job.extra_sections[name]
+    path = job.path
+    values: dict = {"line": entries[0][1].line if entries else job.line("jobs")}
+    parameters: list[Parameter] = []
+    seen: dict = {}  # key (or what a varied key changes) -> line
+    for key, located in entries:
+        text, line = located.text, located.line
+        parameter = parse_parameter(key, text, line, files, path) if is_parameter_key(key) else None
+        folded = (parameter.kind, parameter.section, parameter.name) if parameter else key.lower()
+        if folded in seen:
+            raise ModelError(f"'{key}' given twice (first on line {seen[folded]})", path, line)
+        seen[folded] = line
+        if parameter:
+            parameters.append(parameter)
+        elif folded in ("seed", "replicates"):
+            number = parse_integer(text, path, line)
+            if number < (0 if folded == "seed" else 1):
+                raise ModelError(f"{key} must be {'0 or more' if folded == 'seed' else '1 or more'}", path, line)
+            values[folded] = number
+        elif folded == "mode":
+            if text.lower() not in (CHAINS, ENSEMBLE):
+                raise ModelError(f"mode must be '{CHAINS}' or '{ENSEMBLE}', not '{text}'", path, line)
+            values["mode"] = text.lower()
+        elif folded == "folder":
+            if not text or text.startswith("/"):
+                raise ModelError("folder must be a folder name relative to the job file", path, line)
+            values["folder"] = text
+        else:
+            raise ModelError(
+                f"unknown key '{key}' in [campaign] (seed, replicates, mode, folder, c'name, world.<key>, "
+                "contact.<section>.<key>)", path, line)
+    return CampaignSection(parameters=tuple(parameters), **values)

@@ -1,0 +1,103 @@
+"""Slurm batch scripts of campaigns: ``mbds-campaign submit`` fills the template
+``workflows/slurm.sbatch`` and hands the script to ``sbatch``.
+
+The template's ``{{name}}`` placeholders are filled with :class:`SlurmOptions` and the
+campaign's paths; a line whose placeholder has an empty value is left out (an optional
+``#SBATCH`` directive not asked for). The script launches ``srun <this interpreter> -m mpi4py -m
+mbds.cli.campaign run JOB`` with one thread per rank, and passes the ``USR1`` Slurm sends
+``signal_seconds`` before the time limit on to the campaign.
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from mbds.campaign.ledger import Ledger
+from mbds.campaign.plan import Plan
+from mbds.campaign.section import ENSEMBLE
+from mbds.errors import ModelError
+from mbds.io.text import write_atomic
+
+TEMPLATE = Path(__file__).resolve().parents[2] / "workflows" / "slurm.sbatch"
+SCRIPT_NAME = "campaign.sbatch"
+TIME_FORMAT = re.compile(r"\d+(:\d+){0,2}|\d+-\d+(:\d+){0,2}")
+"""Slurm's --time: minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS."""
+_PLACEHOLDER = re.compile(r"\{\{(\w+)\}\}")
+_SUBMITTED = re.compile(r"Submitted batch job (\d+)")
+
+
+@dataclass
+class SlurmOptions:
+    """``ntasks``: MPI ranks (0: one scheduler and one worker for each task that can run at
+    once); ``time``: Slurm's limit (empty: the partition's); ``signal_seconds``: how long before
+    the limit the campaign is told to stop (s); ``job_name`` (empty: ``mbds-<job>``)."""
+
+    ntasks: int = 0
+    time: str = ""
+    account: str = ""
+    partition: str = ""
+    job_name: str = ""
+    signal_seconds: int = 300
+
+
+def parallel_width(plan: Plan) -> int:
+    """How many tasks of the plan can run at once: one per chain, or per replicate of a chain
+    in ensemble mode."""
+    ensemble = plan.campaign is not None and plan.campaign.mode == ENSEMBLE
+    return len(plan.chains) * (plan.campaign.replicates if ensemble else 1)
+
+
+def render_script(plan: Plan, options: SlurmOptions, python: str = sys.executable, template: Path = TEMPLATE) -> str:
+    """The batch script of the plan's campaign."""
+    job = plan.job.path.resolve()
+    values = {
+        "job_file": shlex.quote(str(job)),
+        "job_name": options.job_name or f"mbds-{job.stem}",
+        "ntasks": str(options.ntasks or 1 + parallel_width(plan)),
+        "time": options.time,
+        "account": options.account,
+        "partition": options.partition,
+        "workdir": str(job.parent),
+        "output": str(plan.folder.resolve() / "slurm-%j.out"),
+        "signal_seconds": str(options.signal_seconds),
+        "python": shlex.quote(python),
+    }
+    return fill(template.read_text(encoding="utf-8"), values, template)
+
+
+def fill(text: str, values: dict[str, str], path: Path | None = None) -> str:
+    """``text`` with each ``{{name}}`` replaced by ``values[name]``; lines with an empty value
+    left out."""
+    lines = []
+    for number, line in enumerate(text.splitlines(keepends=True), start=1):
+        names = _PLACEHOLDER.findall(line)
+        unknown = [n for n in names if n not in values]
+        if unknown:
+            raise ModelError(f"unknown placeholder {{{{{unknown[0]}}}}}", path, number)
+        if all(values[n] for n in names):
+            lines.append(_PLACEHOLDER.sub(lambda m: values[m.group(1)], line))
+    return "".join(lines)
+
+
+def submit(plan: Plan, script: str, ledger: Ledger) -> str:
+    """Write ``script`` into the campaign folder, submit it with the ``sbatch`` found on PATH
+    and record the Slurm job id in the ledger; return the id."""
+    sbatch = shutil.which("sbatch")
+    if sbatch is None:
+        raise ModelError("sbatch not found on PATH (not a Slurm machine? --dry-run prints the script)")
+    path = plan.folder / SCRIPT_NAME
+    plan.folder.mkdir(parents=True, exist_ok=True)
+    write_atomic(path, script)
+    done = subprocess.run([sbatch, str(path)], capture_output=True, text=True, cwd=plan.job.path.parent)
+    found = _SUBMITTED.search(done.stdout)
+    if done.returncode != 0 or not found:
+        said = (done.stderr or done.stdout).strip() or f"exit code {done.returncode}"
+        raise ModelError(f"sbatch did not submit the script: {said}", path)
+    ledger.record_submission(found.group(1), path)
+    return found.group(1)

@@ -1,0 +1,79 @@
+"""One task of a campaign, performed in this process: what every executor calls.
+
+``run_task(task) -> dict`` never raises for a failing task (only KeyboardInterrupt and other
+BaseExceptions pass); it returns the ledger state and info, ready for
+``ledger.mark(task.id, **result)``:
+
+- ``{"state": "done", "output": path, "wall": s}`` (with ``note`` when there was nothing to do:
+  a run that is complete already, a next version that exists already — a task cut off by a kill
+  between its last write and the ledger's update is thus not done twice);
+- ``{"state": "failed", "reason": "file:line: message", "wall": s}``: bad input, a run that did
+  not reach its break time (``maxMinutesForJob``, ``maxLinesInLog``, a state not finite), a
+  reshaping refused.
+
+Tasks of one chain must run in plan order (``depends_on``); tasks of different chains, and the
+replicate runs of one version, may run at once in different processes.
+"""
+
+from __future__ import annotations
+
+import time
+
+from mbds.campaign.ledger import DONE, FAILED
+from mbds.campaign.plan import PREPARE, RUN, Task
+from mbds.campaign.variants import variant_files
+from mbds.data.history import FILE_NAME as HISTORY
+from mbds.errors import ModelError
+from mbds.io.folder import read_model_files, version_name, version_number
+from mbds.simulation.job import incomplete, next_version, time_limits
+from mbds.simulation.version_run import run_version
+from mbds.simulation.versions import create_model_copy, ensure_version
+
+
+def run_task(task: Task) -> dict:
+    """Perform ``task``; its ledger state and info (see the module docstring)."""
+    begun = time.monotonic()
+    try:
+        result = _prepare(task) if task.kind == PREPARE else _run(task) if task.kind == RUN else _wear(task)
+    except ModelError as exc:
+        result = {"state": FAILED, "reason": str(exc)}
+    except Exception as exc:  # a defect met by one task must not stop the other chains
+        result = {"state": FAILED, "reason": f"{type(exc).__name__}: {exc}"}
+    return {**result, "wall": round(time.monotonic() - begun, 3)}
+
+
+def _prepare(task: Task) -> dict:
+    """The chain's model folder (a variant's: the model files with its values written in) and
+    its version 000."""
+    if task.variant is None:
+        version = ensure_version(task.folder, 0, task.source)
+    else:
+        changed, texts = variant_files(read_model_files(task.source), task.variant)
+        create_model_copy(task.folder, changed, 0, texts)
+        version = ensure_version(task.folder, 0)
+    return {"state": DONE, "output": str(version)}
+
+
+def _run(task: Task) -> dict:
+    """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
+    folder = task.folder
+    if version_number(folder) is None:  # a replicate: a copy of its version's model files
+        create_model_copy(folder, read_model_files(folder.parent), task.version)
+    elif not any(folder.glob("*.wld")):
+        raise ModelError(f"version {version_name(task.version)} has not been made", folder)
+    output = str(folder / HISTORY)
+    if not incomplete(folder):
+        return {"state": DONE, "output": output, "note": "complete already, not run again"}
+    record = run_version(folder, task.options, time_limits(task.options.job))
+    if not record.complete:
+        return {"state": FAILED, "output": output, "reason": f"the run stopped at t = {record.end_time:.9g} s "
+                f"({record.stopped})"}
+    return {"state": DONE, "output": output}
+
+
+def _wear(task: Task) -> dict:
+    """Version N + 1, worn by the losses of N's run (the mean over its replicates' runs)."""
+    target = task.folder.parent / version_name(task.version + 1)
+    if any(target.glob("*.wld")):
+        return {"state": DONE, "output": str(target), "note": "exists already, not replaced"}
+    return {"state": DONE, "output": str(next_version(task.folder, task.inputs))}

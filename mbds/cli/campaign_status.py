@@ -1,0 +1,62 @@
+"""``mbds-campaign status``: a table of chains and versions with their states, and progress."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from rich import box
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, RUNNING, Ledger
+from mbds.campaign.plan import Plan, task_states
+from mbds.io.folder import version_name
+
+STYLES = {DONE: "green", RUNNING: "cyan", FAILED: "bold red", BLOCKED: "yellow", PENDING: "dim"}
+
+
+def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
+    """Variants, one row per chain with the state of each version (its tasks taken together:
+    ``k/n`` when k of its n tasks are done), the failures and a summary."""
+    states = task_states(plan, ledger)
+    table_box = box.SIMPLE if console.is_terminal else None
+    if plan.variants and plan.variants[0].parameters:
+        variants = Table(title="variants", box=table_box, title_justify="left")
+        variants.add_column("variant")
+        for key in plan.variants[0].values:
+            variants.add_column(escape(key))
+        for v in plan.variants:
+            variants.add_row(v.id, *map(escape, v.values.values()))
+        console.print(variants)
+    versions = plan.job.versions
+    console.print(f"campaign of {escape(plan.job.path.name)} in {escape(str(plan.folder))}", highlight=False)
+    chains = Table(box=table_box)
+    chains.add_column("chain")
+    for number in versions:
+        chains.add_column(version_name(number))
+    for chain in plan.chains:
+        cells = [_version_cell([states[t.id] for t in plan.tasks if t.chain == chain.id and t.version == n])
+                 for n in versions]
+        chains.add_row(chain.id, *cells)
+    console.print(chains)
+    for task in plan.tasks:
+        if states[task.id] == FAILED:
+            reason = ledger.entry(task.id).get("reason", "")
+            console.print(f"[red]failed[/red] {task.id}: {escape(reason)}", highlight=False)
+    counts = Counter(states.values())
+    parts = [f"{counts[s]} {s}" for s in (RUNNING, FAILED, BLOCKED, PENDING) if counts[s]]
+    console.print(f"{counts[DONE]} of {len(states)} tasks done" + "".join(f", {p}" for p in parts), highlight=False)
+    for job in ledger.submissions:
+        console.print(f"Slurm job {job['job_id']} submitted {job['time']}", highlight=False)
+
+
+def _version_cell(states: list[str]) -> str:
+    """The state of a version from those of its tasks."""
+    for state in (FAILED, RUNNING, BLOCKED):
+        if state in states:
+            return f"[{STYLES[state]}]{state}[/]"
+    done = states.count(DONE)
+    if done == len(states):
+        return f"[{STYLES[DONE]}]{DONE}[/]"
+    return f"{done}/{len(states)}" if done else f"[{STYLES[PENDING]}]{PENDING}[/]"
