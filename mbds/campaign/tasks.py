@@ -9,7 +9,12 @@ BaseExceptions pass); it returns the ledger state and info, ready for
   between its last write and the ledger's update is thus not done twice);
 - ``{"state": "failed", "reason": "file:line: message", "wall": s}``: bad input, a run that did
   not reach its break time (``maxMinutesForJob``, ``maxLinesInLog``, a state not finite), a
-  reshaping refused.
+  reshaping refused;
+- ``{"state": "pending", "note": ...}``: a run stopped because ``stop()`` became true (the
+  campaign was told to stop); what it computed is written, marked incomplete, and the task is
+  run again in full when the campaign resumes.
+
+The model's warnings met by a task are not printed but returned (``warnings``: their texts).
 
 Tasks of one chain must run in plan order (``depends_on``); tasks of different chains, and the
 replicate runs of one version, may run at once in different processes.
@@ -18,28 +23,39 @@ replicate runs of one version, may run at once in different processes.
 from __future__ import annotations
 
 import time
+import warnings
 
-from mbds.campaign.ledger import DONE, FAILED
+from collections.abc import Callable
+
+from mbds.campaign.ledger import DONE, FAILED, PENDING
 from mbds.campaign.plan import PREPARE, RUN, Task
 from mbds.campaign.variants import variant_files
 from mbds.data.history import FILE_NAME as HISTORY
-from mbds.errors import ModelError
+from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, version_name, version_number
 from mbds.simulation.job import incomplete, next_version, time_limits
+from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import run_version
 from mbds.simulation.versions import create_model_copy, ensure_version
 
 
-def run_task(task: Task) -> dict:
-    """Perform ``task``; its ledger state and info (see the module docstring)."""
+STOPPED = "the campaign was told to stop"
+
+
+def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
+    """Perform ``task``; its ledger state and info (see the module docstring). ``stop`` is
+    asked between chunks of a run whether to stop it now."""
     begun = time.monotonic()
-    try:
-        result = _prepare(task) if task.kind == PREPARE else _run(task) if task.kind == RUN else _wear(task)
-    except ModelError as exc:
-        result = {"state": FAILED, "reason": str(exc)}
-    except Exception as exc:  # a defect met by one task must not stop the other chains
-        result = {"state": FAILED, "reason": f"{type(exc).__name__}: {exc}"}
-    return {**result, "wall": round(time.monotonic() - begun, 3)}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ModelWarning)
+        try:
+            result = _prepare(task) if task.kind == PREPARE else _run(task, stop) if task.kind == RUN else _wear(task)
+        except ModelError as exc:
+            result = {"state": FAILED, "reason": str(exc)}
+        except Exception as exc:  # a defect met by one task must not stop the other chains
+            result = {"state": FAILED, "reason": f"{type(exc).__name__}: {exc}"}
+    found = sorted({str(w.message) for w in caught if issubclass(w.category, ModelWarning)})
+    return {**result, "wall": round(time.monotonic() - begun, 3), **({"warnings": found} if found else {})}
 
 
 def _prepare(task: Task) -> dict:
@@ -54,7 +70,7 @@ def _prepare(task: Task) -> dict:
     return {"state": DONE, "output": str(version)}
 
 
-def _run(task: Task) -> dict:
+def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
     folder = task.folder
     if version_number(folder) is None:  # a replicate: a copy of its version's model files
@@ -64,7 +80,9 @@ def _run(task: Task) -> dict:
     output = str(folder / HISTORY)
     if not incomplete(folder):
         return {"state": DONE, "output": output, "note": "complete already, not run again"}
-    record = run_version(folder, task.options, time_limits(task.options.job))
+    record = run_version(folder, task.options, time_limits(task.options.job, shown=_stopper(stop)))
+    if record.stopped == STOPPED:
+        return {"state": PENDING, "output": output, "note": f"stopped at t = {record.end_time:.9g} s; run again on resume"}
     if not record.complete:
         return {"state": FAILED, "output": output, "reason": f"the run stopped at t = {record.end_time:.9g} s "
                 f"({record.stopped})"}
@@ -77,3 +95,15 @@ def _wear(task: Task) -> dict:
     if any(target.glob("*.wld")):
         return {"state": DONE, "output": str(target), "note": "exists already, not replaced"}
     return {"state": DONE, "output": str(next_version(task.folder, task.inputs))}
+
+
+def _stopper(stop: Callable[[], bool] | None):
+    """A progress callback that ends the run once ``stop()`` is true (None without ``stop``)."""
+    if stop is None:
+        return None
+
+    def check(start, now, end, steps):
+        if stop():
+            raise RunStopped(STOPPED)
+
+    return check

@@ -26,7 +26,7 @@ DEBUG = typer.Option(False, "--debug", help="Show a traceback on errors.")
 
 @app.callback()
 def main() -> None:
-    """Wear campaigns across MPI ranks: submit (Slurm), status."""
+    """Wear campaigns across MPI ranks: run, status, collect, submit (Slurm)."""
 
 
 def _check_time(value: str) -> str:
@@ -83,6 +83,106 @@ def status(path: Path = JOB, debug: bool = DEBUG) -> None:
         ledger = Ledger.read(plan.folder)
         ledger.check(plan)
         print_status(plan, ledger, console)
+
+
+EXIT_FAILED, EXIT_STOPPED = 1, 3
+
+
+@app.command()
+def collect(path: Path = JOB, debug: bool = DEBUG) -> None:
+    """Merge the campaign's runs into one file, campaign.nc in the campaign folder (read it with
+    mbds.open_campaign)."""
+    from mbds.campaign.collect import collect as collect_runs
+    from mbds.campaign.plan import expand
+
+    with reported_errors(debug):
+        print(f"wrote {collect_runs(expand(path))}")
+
+
+@app.command()
+def run(
+    path: Path = JOB,
+    workers: int = typer.Option(1, "--workers", min=1, help="Processes running tasks at once without MPI."),
+    debug: bool = DEBUG,
+) -> None:
+    """Run the campaign's tasks: on MPI ranks under mpiexec or srun (rank 0 schedules), else in
+    --workers processes. Running it again resumes the campaign."""
+    from mbds.campaign import executors
+
+    comm = _mpi_world()
+    if comm is not None and comm.Get_rank() > 0:
+        from mbds.campaign.run import stop_signals
+
+        with stop_signals() as stopping:
+            executors.serve(comm, stopping)
+        return
+    if comm is not None:
+        executor = executors.Ranks(comm)
+    with reported_errors(debug):
+        try:
+            code = _schedule(path, workers, executor if comm is not None else None)
+        finally:
+            if comm is not None:
+                executor.close()
+    if code:
+        raise typer.Exit(code)
+
+
+def _schedule(path: Path, workers: int, ranks) -> int:
+    """Rank 0 or the only process: check, warm up, run the loop; the exit code."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from mbds.campaign import executors
+    from mbds.campaign.ledger import Ledger
+    from mbds.campaign.plan import expand
+    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
+
+    plan = expand(path)
+    Ledger.read(plan.folder).check(plan)
+    campaign_cache(plan)
+    console = Console(stderr=True)
+    with stop_signals() as stopping:
+        warm_up(plan)
+        if ranks is not None:
+            executor, workers = ranks, ranks.free()
+        elif workers > 1:
+            executor = executors.Pool(workers)
+        else:
+            executor = executors.Sequential(stopping)
+        bar = Progress(TextColumn("tasks"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                       console=console, disable=not console.is_terminal)
+        with bar:
+            shown = bar.add_task("tasks", total=len(plan.tasks))
+            try:
+                outcome = run_campaign(plan, executor, stopping,
+                                       lambda done, total: bar.update(shown, completed=done), workers)
+            finally:
+                if ranks is None:
+                    executor.close()
+    print(f"{len(outcome.done)} tasks done, {len(outcome.failed)} failed"
+          + (f", {len(outcome.stopped)} stopped" if outcome.stopped else ""), file=sys.stderr)
+    if outcome.interrupted:
+        print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
+        return EXIT_STOPPED
+    return EXIT_FAILED if outcome.failed or _unfinished(plan) else 0
+
+
+def _unfinished(plan) -> bool:
+    """Whether some task of the campaign is not done (failed or blocked)."""
+    from mbds.campaign.ledger import DONE, Ledger
+    from mbds.campaign.plan import task_states
+
+    return any(state != DONE for state in task_states(plan, Ledger.read(plan.folder)).values())
+
+
+def _mpi_world():
+    """MPI's world communicator when launched on more than one rank (``python -m mpi4py`` under
+    mpiexec or srun), else None."""
+    if "mpi4py.run" not in sys.modules:  # not launched with python -m mpi4py
+        return None
+    from mpi4py import MPI
+
+    return MPI.COMM_WORLD if MPI.COMM_WORLD.Get_size() > 1 else None
 
 
 if __name__ == "__main__":

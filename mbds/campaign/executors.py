@@ -1,0 +1,166 @@
+"""Where a campaign's tasks run: in this process, in a process pool, or on MPI ranks.
+
+The scheduling loop (:func:`mbds.campaign.run.run_campaign`) sees every executor the same way:
+
+- ``free()``: how many more tasks it can take now;
+- ``where() -> dict``: what to record in the ledger about where the next task will run
+  (``{"rank": k}``);
+- ``submit(task)``: start ``task`` (performed at once by :class:`Sequential`);
+- ``results() -> list[(task id, result)]``: the tasks finished since the last call, each with
+  the result of :func:`mbds.campaign.tasks.run_task`;
+- ``stop()``: ask the running tasks to stop soon (their runs write what they have);
+- ``close()``: release the workers.
+
+Only the scheduling process calls these, and only it writes the ledger. Each task is performed by
+``run_task`` in one process, so a task's outputs do not depend on the executor or the number of
+ranks.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import signal
+import time
+from concurrent.futures import Future, ProcessPoolExecutor
+
+from mbds.campaign.plan import Task
+from mbds.campaign.tasks import run_task
+
+POLL = 0.005
+"""Sleep between polls of an idle scheduler or worker (s): MPI's blocking receive busy-waits."""
+TASK, RESULT, STOP, QUIT = 1, 2, 3, 4  # MPI message tags
+
+
+class Sequential:
+    """One task at a time, in this process (tests, a laptop without MPI)."""
+
+    def __init__(self, stopping):
+        self._stopping = stopping
+        self._done: list[tuple[str, dict]] = []
+
+    def free(self) -> int:
+        return 1
+
+    def where(self) -> dict:
+        return {"rank": 0}
+
+    def submit(self, task: Task) -> None:
+        self._done.append((task.id, run_task(task, self._stopping)))
+
+    def results(self) -> list[tuple[str, dict]]:
+        done, self._done = self._done, []
+        return done
+
+    def stop(self) -> None:
+        """The stop flag is read by the task itself."""
+
+    def close(self) -> None:
+        """Nothing to release."""
+
+
+class Pool:
+    """``workers`` processes of a :class:`concurrent.futures.ProcessPoolExecutor`, each running
+    one task at a time; a shared event tells their runs to stop."""
+
+    def __init__(self, workers: int):
+        context = multiprocessing.get_context("spawn")  # no forked copies of this process's state
+        self._event = context.Event()
+        self._executor = ProcessPoolExecutor(workers, mp_context=context, initializer=_pool_worker,
+                                             initargs=(self._event,))
+        self._workers = workers
+        self._running: dict[str, Future] = {}
+
+    def free(self) -> int:
+        return self._workers - len(self._running)
+
+    def where(self) -> dict:
+        return {}
+
+    def submit(self, task: Task) -> None:
+        self._running[task.id] = self._executor.submit(_pool_task, task)
+
+    def results(self) -> list[tuple[str, dict]]:
+        finished = [task_id for task_id, future in self._running.items() if future.done()]
+        return [(task_id, self._running.pop(task_id).result()) for task_id in finished]
+
+    def stop(self) -> None:
+        self._event.set()
+
+    def close(self) -> None:
+        self._executor.shutdown(wait=True)
+
+
+_pool_event = None  # the pool's stop event, in a worker process
+
+
+def _pool_worker(event) -> None:
+    """Set up a pool process: Ctrl-C is the scheduler's to handle; ``event`` stops runs."""
+    global _pool_event
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _pool_event = event
+
+
+def _pool_task(task: Task) -> dict:
+    return run_task(task, _pool_event.is_set)
+
+
+class Ranks:
+    """MPI ranks 1 ... size - 1 of ``comm``, each running one task at a time; this process
+    (rank 0) only schedules. The workers run :func:`serve`."""
+
+    def __init__(self, comm):
+        self._comm = comm
+        self._idle = list(range(comm.Get_size() - 1, 0, -1))
+        self._busy: dict[int, str] = {}
+
+    def free(self) -> int:
+        return len(self._idle)
+
+    def where(self) -> dict:
+        return {"rank": self._idle[-1]}
+
+    def submit(self, task: Task) -> None:
+        rank = self._idle.pop()
+        self._busy[rank] = task.id
+        self._comm.send(task, dest=rank, tag=TASK)
+
+    def results(self) -> list[tuple[str, dict]]:
+        from mpi4py import MPI
+
+        done = []
+        status = MPI.Status()
+        while self._comm.Iprobe(source=MPI.ANY_SOURCE, tag=RESULT, status=status):
+            rank = status.Get_source()
+            task_id, result = self._comm.recv(source=rank, tag=RESULT)
+            del self._busy[rank]
+            self._idle.append(rank)
+            done.append((task_id, result))
+        return done
+
+    def stop(self) -> None:
+        for rank in self._busy:
+            self._comm.send(None, dest=rank, tag=STOP)
+
+    def close(self) -> None:
+        for rank in range(1, self._comm.Get_size()):
+            self._comm.send(None, dest=rank, tag=QUIT)
+
+
+def serve(comm, stopping) -> None:
+    """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit. A run
+    stops early when ``stopping()`` is true (a signal to this process) or rank 0 says so."""
+    from mpi4py import MPI
+
+    status = MPI.Status()
+
+    def told_to_stop() -> bool:
+        return stopping() or comm.Iprobe(source=0, tag=STOP)
+
+    while True:
+        while not comm.Iprobe(source=0, tag=MPI.ANY_TAG, status=status):
+            time.sleep(POLL)
+        message = comm.recv(source=0, tag=status.Get_tag())
+        if status.Get_tag() == QUIT:
+            return
+        if status.Get_tag() == TASK:
+            comm.send((message.id, run_task(message, told_to_stop)), dest=0, tag=RESULT)
