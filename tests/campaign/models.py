@@ -1,12 +1,12 @@
 """Campaign job files on a copy of campaigns/2mass (quick to read, runs in a fraction of a second
 once compiled)."""
 
-import shutil
 from pathlib import Path
 
 from typer.testing import CliRunner
 
 from mbds.cli.campaign import app
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -15,7 +15,7 @@ def two_mass(tmp_path: Path, campaign: str | None, jobs: str = "000-002", create
     """A copy of campaigns/2mass with a job file of ``jobs`` and ``campaign`` as its
     ``[campaign]`` section (None: no section); the job file's path."""
     folder = tmp_path / "2mass"
-    shutil.copytree(ROOT / "campaigns" / "2mass", folder, ignore=shutil.ignore_patterns("campaign"))  # not the README example's runs
+    copy_example("2mass", folder)
     text = f"[main]\njobs = {jobs}\ncreateNextVersionAtEnd = {create}\n"
     if campaign is not None:
         text += "[campaign]\n" + campaign

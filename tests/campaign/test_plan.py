@@ -4,7 +4,15 @@ seeds, dependencies; a job file without [campaign] is the chain `mbds job` runs.
 import pytest
 
 from mbds.campaign.ledger import DONE, FAILED, RUNNING, Ledger
-from mbds.campaign.plan import PREPARE, RUN, WEAR, expand, ready_tasks, replicate_seed, task_states
+from mbds.campaign.plan import (
+    PREPARE,
+    RUN,
+    WEAR,
+    expand,
+    ready_tasks,
+    replicate_seed,
+    task_states,
+)
 from mbds.errors import ModelError
 from mbds.io.job import read_job
 from tests.campaign.models import campaign, two_mass

@@ -1,6 +1,5 @@
 """`mbds check`: exit 0 on every example, exit 2 with file and line on broken copies."""
 
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -9,6 +8,7 @@ import pytest
 from typer.testing import CliRunner
 
 from mbds.cli.main import app
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ["2mass", "wearballs", "woodpecker"]
@@ -36,7 +36,7 @@ def test_check_console_script_runs_installed_entry_point():
 @pytest.fixture
 def broken(tmp_path):
     folder = tmp_path / "2mass"
-    shutil.copytree(ROOT / "campaigns" / "2mass", folder)
+    copy_example("2mass", folder)
     return folder
 
 

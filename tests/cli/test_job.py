@@ -1,6 +1,5 @@
 """`mbds job` and `mbds next`: resuming short and stopped runs, time limits, Ctrl-C, bad input."""
 
-import shutil
 from pathlib import Path
 
 import pytest
@@ -9,6 +8,7 @@ from typer.testing import CliRunner
 from mbds.cli.main import app
 from mbds.data.history import read_attributes
 from tests.cli.test_run import ctrl_c
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -22,7 +22,7 @@ def mbds(*args):
 def two_mass(tmp_path, job: str) -> Path:
     """A copy of campaigns/2mass (breakTime 0.5 s) with ``job`` as its job file."""
     folder = tmp_path / "2mass"
-    shutil.copytree(ROOT / "campaigns" / "2mass", folder)
+    copy_example("2mass", folder)
     (folder / "2mass.job").write_text(job)
     return folder / "2mass.job"
 
@@ -113,7 +113,7 @@ def test_next_after_a_full_run_and_not_twice(tmp_path):
 
 def test_ctrl_c_stops_the_version_and_the_job(tmp_path):
     folder = tmp_path / "woodpecker"
-    shutil.copytree(ROOT / "campaigns" / "woodpecker", folder)
+    copy_example("woodpecker", folder)
     world = folder / "woodpecker.wld"
     text = world.read_text()
     world.write_text(text.replace(next(x for x in text.splitlines() if x.startswith("breakTime")), "breakTime = 1000"))

@@ -1,7 +1,6 @@
 """`mbds run`: the examples reach their break time, --from continues, Ctrl-C and bad input."""
 
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -14,6 +13,7 @@ import xarray as xr
 from typer.testing import CliRunner
 
 from mbds.cli.main import app
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -25,7 +25,7 @@ def mbds(*args):
 
 def example(tmp_path, name):
     folder = tmp_path / name
-    shutil.copytree(ROOT / "campaigns" / name, folder)
+    copy_example(name, folder)
     return folder
 
 

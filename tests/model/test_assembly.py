@@ -1,7 +1,6 @@
 """Assembling the example models: bodies, bindings, parameters, contacts, watches, and
 compiled functions that agree with sympy's own evaluation of the model files' expressions."""
 
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +12,7 @@ from mbds.expr import symbols as S
 from mbds.model.arrays import flatten
 from mbds.model.bodies import DEPENDENT, FIXED, GENERALIZED
 from mbds.model.load import load_model
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 CAMPAIGNS = ROOT / "campaigns"
@@ -145,7 +145,7 @@ def test_flattened_arrays(models):
 
 def test_variant_constants_reuse_the_compiled_module(tmp_path, models):
     folder = tmp_path / "2mass"
-    shutil.copytree(CAMPAIGNS / "2mass", folder)
+    copy_example("2mass", folder)
     (folder / "2mass.cns").write_text("c'gravity = 1.62\n")
     variant = load_model(folder)
     assert variant.compiled.source_hash == models["2mass"].compiled.source_hash
@@ -158,7 +158,7 @@ def test_variant_constants_reuse_the_compiled_module(tmp_path, models):
 @pytest.fixture
 def copy_2mass(tmp_path):
     folder = tmp_path / "2mass"
-    shutil.copytree(CAMPAIGNS / "2mass", folder)
+    copy_example("2mass", folder)
     return folder
 
 
@@ -183,7 +183,7 @@ def test_broken_model_is_reported_with_file_and_line(copy_2mass, name, text, mes
 
 def test_inconsistent_jacobian_is_warned_about(tmp_path):
     folder = tmp_path / "woodpecker"
-    shutil.copytree(CAMPAIGNS / "woodpecker", folder)
+    copy_example("woodpecker", folder)
     dc = folder / "woodpecker.dc"
     text = dc.read_text()
     lines = text.splitlines()
@@ -197,7 +197,7 @@ def test_inconsistent_jacobian_is_warned_about(tmp_path):
 def test_dependent_coordinate_from_position_only(tmp_path):
     """A .dc block with only a position gets velocity, acceleration, J and j by differentiation."""
     folder = tmp_path / "woodpecker"
-    shutil.copytree(CAMPAIGNS / "woodpecker", folder)
+    copy_example("woodpecker", folder)
     full = load_model(CAMPAIGNS / "woodpecker", compile=False)
     lines = (folder / "woodpecker.dc").read_text().splitlines()
     short = []
@@ -228,7 +228,7 @@ def test_pairs_that_can_never_touch_are_skipped(tmp_path):
     """[ringSideR:all] names every body, but not the carrier ring, a second virtual body of the
     same carrier, or two fixed bodies."""
     folder = tmp_path / "woodpecker"
-    shutil.copytree(CAMPAIGNS / "woodpecker", folder)
+    copy_example("woodpecker", folder)
     (folder / "ringSideX.bdy").write_text((folder / "ringSideR.bdy").read_text().replace("name = ringSideR", "name = ringSideX"))
     (folder / "post.bdy").write_text((folder / "stick.bdy").read_text().replace("name = stick", "name = post"))
     world = folder / "woodpecker.wld"

@@ -19,16 +19,14 @@ from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import simulate
 from mbds.simulation.version_run import PROGRESS_CHUNK, RunOptions, run_version
 from mbds.simulation.versions import ensure_version
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def model_copy(tmp_path, name="2mass", edits=()):
     """A copy of an example model folder; ``edits``: (file, old, new) text replacements."""
-    folder = tmp_path / name
-    folder.mkdir(parents=True)
-    for path in (ROOT / "campaigns" / name).iterdir():
-        (folder / path.name).write_text(path.read_text())
+    folder = copy_example(name, tmp_path / name)
     for file, old, new in edits:
         text = (folder / file).read_text()
         assert old in text

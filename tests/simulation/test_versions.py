@@ -1,6 +1,5 @@
 """Version folders: created whole from checked model files, found from a model or version path."""
 
-import shutil
 from pathlib import Path
 
 import pytest
@@ -13,6 +12,7 @@ from mbds.simulation.versions import (
     job_settings,
     run_folder,
 )
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[2]
 @pytest.fixture
 def model(tmp_path):
     folder = tmp_path / "2mass"
-    shutil.copytree(ROOT / "campaigns" / "2mass", folder)
+    copy_example("2mass", folder)
     return folder
 
 

@@ -20,6 +20,7 @@ from mbds.data.history import read_attributes, read_point_losses
 from mbds.io.folder import read_model_files
 from mbds.model.geometry import polygon_properties
 from mbds.wear.version import WEAR_FILE
+from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
 BALLS = [f"ball{k}" for k in range(1, 6)]
@@ -35,7 +36,7 @@ def mbds(*args):
 
 def wearballs(folder: Path, jobs: str) -> Path:
     """A copy of campaigns/wearballs with a shorter breakTime and a job file for ``jobs``."""
-    shutil.copytree(ROOT / "campaigns" / "wearballs", folder)
+    copy_example("wearballs", folder)
     world = folder / "wearballs.wld"
     world.write_text(world.read_text().replace("breakTime = 1.5", f"breakTime = {BREAK_TIME}"))
     (folder / "wearballs.job").write_text(f"[main]\njobs = {jobs}\ncreateNextVersionAtEnd = 1\n")
