@@ -3,8 +3,8 @@
 Each task is ``pending`` (the default of a task not in the file), ``running``, ``done`` or
 ``failed``; ``blocked`` is not stored but derived from the plan (a task after a failed one,
 :func:`mbds.campaign.plan.task_states`). An entry also holds what the executor reports:
-``reason`` (failed), ``rank``, ``wall`` (s), ``output`` (path), ``start`` and ``end`` (UTC,
-ISO 8601). Every change is saved at once through a temporary file and a rename, so a hard kill
+``reason`` (failed), ``rank``, ``wall`` (s), ``output`` (path), ``compiled`` (functions numba
+compiled during the task), ``start`` and ``end`` (UTC, ISO 8601). Every change is saved at once through a temporary file and a rename, so a hard kill
 leaves the previous or the new ledger, never half of one.
 
 API for executors (one process, the scheduling one, writes the ledger)::

@@ -14,7 +14,9 @@ BaseExceptions pass); it returns the ledger state and info, ready for
   campaign was told to stop); what it computed is written, marked incomplete, and the task is
   run again in full when the campaign resumes.
 
-The model's warnings met by a task are not printed but returned (``warnings``: their texts).
+The model's warnings met by a task are not printed but returned (``warnings``: their texts);
+``compiled`` is the number of functions numba compiled during the task (0 when the campaign's
+warm-up filled the cache).
 
 Tasks of one chain must run in plan order (``depends_on``); tasks of different chains, and the
 replicate runs of one version, may run at once in different processes.
@@ -27,6 +29,7 @@ import warnings
 
 from collections.abc import Callable
 
+from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
 from mbds.campaign.plan import PREPARE, RUN, Task
 from mbds.campaign.variants import variant_files
@@ -46,7 +49,7 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """Perform ``task``; its ledger state and info (see the module docstring). ``stop`` is
     asked between chunks of a run whether to stop it now."""
     begun = time.monotonic()
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, counted_compiles() as compiles:
         warnings.simplefilter("always", ModelWarning)
         try:
             result = _prepare(task) if task.kind == PREPARE else _run(task, stop) if task.kind == RUN else _wear(task)
@@ -55,7 +58,8 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
         except Exception as exc:  # a defect met by one task must not stop the other chains
             result = {"state": FAILED, "reason": f"{type(exc).__name__}: {exc}"}
     found = sorted({str(w.message) for w in caught if issubclass(w.category, ModelWarning)})
-    return {**result, "wall": round(time.monotonic() - begun, 3), **({"warnings": found} if found else {})}
+    return {**result, "wall": round(time.monotonic() - begun, 3), "compiled": compiles.count,
+            **({"warnings": found} if found else {})}
 
 
 def _prepare(task: Task) -> dict:

@@ -116,14 +116,21 @@ def run(
         with stop_signals() as stopping:
             executors.serve(comm, stopping)
         return
-    if comm is not None:
-        executor = executors.Ranks(comm)
-    with reported_errors(debug):
-        try:
-            code = _schedule(path, workers, executor if comm is not None else None)
-        finally:
-            if comm is not None:
-                executor.close()
+    ranks = executors.Ranks(comm) if comm is not None else None
+    try:
+        with reported_errors(debug):
+            code = _schedule(path, workers, ranks)
+    except typer.Exit as exc:
+        code = exc.exit_code
+    finally:
+        if ranks is not None:
+            ranks.close()
+    if code and comm is not None:
+        # The workers have quit. Finalizing here ends MPI cleanly: a non-zero exit would make
+        # `python -m mpi4py` call MPI_Abort, which reports an abort for a mere stop or failure.
+        from mpi4py import MPI
+
+        MPI.Finalize()
     if code:
         raise typer.Exit(code)
 
