@@ -26,6 +26,7 @@ import re
 import subprocess
 from pathlib import Path
 
+import netCDF4
 import numpy as np
 import xarray as xr
 
@@ -39,17 +40,28 @@ from mbds.io.text import atomic_path
 
 CAMPAIGN_FILE = "campaign.nc"
 POINT_VARIABLES = ("shape_x", "shape_y", "point_lost_work")
+SUMMARY_VARIABLES = POINT_VARIABLES + ("body", "point_body", "point_number")
 
 
 def collect(plan: Plan) -> Path:
     """Merge the runs of ``plan`` into ``campaign.nc`` in its campaign folder; its path.
-    ModelError when no run of the campaign is done."""
+    ModelError when no run of the campaign is done.
+
+    Each run's root group is copied into its node, one run at a time, variable by variable with
+    the run file's own types, attributes, chunks and compression (memory holds one variable at a
+    time, whatever the campaign's size); then the summary is written into the root group."""
     ledger = Ledger.read(plan.folder)
     ledger.check(plan)
-    tree = campaign_tree(plan, ledger)
+    runs = [t for t in plan.tasks if t.kind == RUN]
+    done = [t for t in runs if ledger.state(t.id) == DONE and (t.folder / HISTORY).is_file()]
+    if not done:
+        raise ModelError("no run of the campaign is done yet; run it first: mbds-campaign run", plan.job.path)
     path = plan.folder / CAMPAIGN_FILE
     with atomic_path(path) as tmp:
-        tree.to_netcdf(tmp, engine="netcdf4")
+        with netCDF4.Dataset(tmp, "w") as out:
+            histories = {task.id: copy_root_group(task.folder / HISTORY, out.createGroup(node_path(plan, task)))
+                         for task in done}
+        summary(plan, ledger, runs, histories).to_netcdf(tmp, mode="a", engine="netcdf4")
     return path
 
 
@@ -63,19 +75,32 @@ def open_campaign(path: str | Path) -> xr.DataTree:
         return tree.load()
 
 
-def campaign_tree(plan: Plan, ledger: Ledger) -> xr.DataTree:
-    """The summary and one node per done run (see the module docstring)."""
-    runs = [t for t in plan.tasks if t.kind == RUN]
-    done = [t for t in runs if ledger.state(t.id) == DONE and (t.folder / HISTORY).is_file()]
-    if not done:
-        raise ModelError("no run of the campaign is done yet; run it first: mbds-campaign run", plan.job.path)
-    histories = {}
-    for task in done:
-        with xr.open_dataset(task.folder / HISTORY, engine="netcdf4") as ds:
-            histories[task.id] = ds.load()
-    nodes = {"/": summary(plan, ledger, runs, histories)}
-    nodes.update({node_path(plan, t): histories[t.id] for t in done})
-    return xr.DataTree.from_dict(nodes)
+def copy_root_group(source: Path, group: netCDF4.Group) -> xr.Dataset:
+    """Copy the root group of the run file ``source`` (dimensions, variables with their
+    attributes, chunks and compression, and its attributes; not its subgroups) into ``group``;
+    what the summary takes from it: the variables ``SUMMARY_VARIABLES`` and the attributes."""
+    kept = {}
+    with netCDF4.Dataset(source) as run:
+        run.set_auto_maskandscale(False)
+        for name, dimension in run.dimensions.items():
+            group.createDimension(name, None if dimension.isunlimited() else len(dimension))
+        for name, variable in run.variables.items():
+            attributes = {key: variable.getncattr(key) for key in variable.ncattrs()}
+            filters = variable.filters() or {}
+            chunks = variable.chunking()
+            copy = group.createVariable(
+                name, variable.datatype, variable.dimensions, fill_value=attributes.pop("_FillValue", None),
+                zlib=bool(filters.get("zlib")), complevel=filters.get("complevel") or 4,
+                shuffle=bool(filters.get("shuffle")), contiguous=chunks == "contiguous",
+                chunksizes=None if chunks == "contiguous" else chunks)
+            copy.set_auto_maskandscale(False)
+            copy.setncatts(attributes)
+            copy[...] = values = variable[...]
+            if name in SUMMARY_VARIABLES:
+                kept[name] = (variable.dimensions, values, attributes)
+        attributes = {key: run.getncattr(key) for key in run.ncattrs()}
+        group.setncatts(attributes)
+    return xr.Dataset(kept, attrs=attributes)
 
 
 def node_path(plan: Plan, task: Task) -> str:

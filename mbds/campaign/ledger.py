@@ -4,8 +4,9 @@ Each task is ``pending`` (the default of a task not in the file), ``running``, `
 ``failed``; ``blocked`` is not stored but derived from the plan (a task after a failed one,
 :func:`mbds.campaign.plan.task_states`). An entry also holds what the executor reports:
 ``reason`` (failed), ``rank``, ``wall`` (s), ``output`` (path), ``compiled`` (functions numba
-compiled during the task), ``start`` and ``end`` (UTC, ISO 8601). Every change is saved at once through a temporary file and a rename, so a hard kill
-leaves the previous or the new ledger, never half of one.
+compiled during the task), ``start`` and ``end`` (UTC, ISO 8601, to the millisecond). Every change
+is saved at once through a temporary file and a rename, so a hard kill leaves the previous or the
+new ledger, never half of one.
 
 API for executors (one process, the scheduling one, writes the ledger)::
 
@@ -98,7 +99,7 @@ class Ledger:
         entry = {} if state in (PENDING, RUNNING) else self.tasks.get(task_id, {})
         entry.update(info, state=state)
         if state != PENDING:
-            entry["start" if state == RUNNING else "end"] = _now()
+            entry["start" if state == RUNNING else "end"] = utc_now()
         self.tasks[task_id] = entry
         self.save()
 
@@ -126,7 +127,7 @@ class Ledger:
 
     def record_submission(self, job_id: str, script: str | Path) -> None:
         """Keep a Slurm job submitted for this campaign, and save."""
-        self.submissions.append({"job_id": job_id, "script": str(script), "time": _now()})
+        self.submissions.append({"job_id": job_id, "script": str(script), "time": utc_now()})
         self.save()
 
     def save(self) -> None:
@@ -148,5 +149,6 @@ def _made_of(plan: Plan) -> dict:
     }
 
 
-def _now() -> str:
-    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+def utc_now() -> str:
+    """The time now, UTC, ISO 8601 to the millisecond."""
+    return datetime.now(timezone.utc).isoformat(timespec="milliseconds")

@@ -26,10 +26,9 @@ import threading
 import time
 import warnings
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
 
 from mbds.campaign.executors import POLL
-from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger
+from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
 from mbds.campaign.plan import Plan, ready_tasks, task_states
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
@@ -88,7 +87,7 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
     is added to the ledger's ``campaign["runs"]``."""
     ledger = Ledger.load(plan.folder)
     ledger.bind(plan)
-    outcome = Outcome(start=_now())
+    outcome = Outcome(start=utc_now())
     running: set[str] = set()
     told = False
     while True:
@@ -111,7 +110,7 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
         if not running:
             break
         time.sleep(POLL)
-    outcome.end = _now()
+    outcome.end = utc_now()
     ledger.campaign.setdefault("runs", []).append(
         {"host": socket.gethostname(), "workers": workers, "start": outcome.start, "end": outcome.end})
     ledger.save()
@@ -139,6 +138,3 @@ def stop_signals():
         for name, old in previous.items():
             signal.signal(getattr(signal, name), old)
 
-
-def _now() -> str:
-    return datetime.now(timezone.utc).isoformat(timespec="seconds")

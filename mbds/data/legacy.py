@@ -13,7 +13,6 @@ their column headers are lines 1 and 5 of ``log.txt``. The layout of ``log.txt``
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
@@ -77,9 +76,12 @@ def write_legacy(folder: str | Path, record: RunRecord) -> None:
 
 
 def _table(values: np.ndarray) -> str:
-    out = io.StringIO()
-    np.savetxt(out, values, fmt=NUMBER, delimiter=" ")
-    return out.getvalue()
+    """Rows of ``NUMBER``-formatted values joined by spaces (what ``numpy.savetxt`` writes), with
+    exact zeros, most of a watch table, written as ``0`` without formatting them."""
+    cells = np.full(values.shape, "0", dtype=object)
+    formatted = (values != 0) | np.signbit(values)  # -0.0 is written "-0", as %g does
+    cells[formatted] = [NUMBER % v for v in values[formatted].tolist()]
+    return "".join(" ".join(row) + "\n" for row in cells.tolist())
 
 
 def event_alerts(events: np.ndarray, model: Model) -> list[str]:

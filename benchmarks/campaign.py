@@ -1,0 +1,229 @@
+"""A wear campaign of 8 chains on MPI ranks: 1 worker against 2 workers, in one run.
+
+The campaign: a copy of campaigns/wearballs with ``[campaign]`` varying ``c'amplitude`` (2 values)
+and ``c'omega`` (4 values), 8 chains of versions 000-004 (full breakTime of 1.5 s each), every
+version worn into the next: 40 runs and 40 wear steps. It runs twice from scratch,
+
+- ``mpiexec -n 2``: the scheduling rank and 1 worker,
+- ``mpiexec -n 3``: the scheduling rank and 2 workers (the machine has 2 cores; rank 0 only
+  hands out tasks and writes the ledger, sleeping between polls),
+
+and, for the path without MPI, once more with ``mbds-campaign run --workers 2`` (a process pool).
+All share one compile cache (``MBDS_CACHE_DIR``), filled first by a cold warm-up whose time is
+shown on its own.
+
+Figures:
+
+- ``wall s``: the whole command, interpreter start, imports and the warm-up (a cache load) in;
+  ``loop s``: first task start to last task end in the ledger (the fan-out alone);
+- ``tasks s``: the sum of the tasks' wall times (measured by the worker around each task);
+- efficiency: t(1 worker) / (2 t(2 workers)), for the whole command and for the loop;
+- per-task overhead: ``sched ms``, the ledger's end - start of a task minus its own wall time
+  (sending, polling, receiving, ledger write), and ``idle ms``, a worker's mean gap between the
+  end of one task and the start of the next; ``start-up`` and ``writing``: a run task's wall time
+  split by timing, in this process, the model load and the simulation of the same versions
+  (the rest is writing the outputs);
+- ``compiled``: functions numba compiled in the tasks (numba's compile events, recorded per task
+  in the ledger): 0 proves that no worker compiled;
+- collection: ``mbds-campaign collect``'s merge of the 2-worker campaign, against its compute
+  (the sum of its tasks' wall times); and the same for the campaign with a history sample every
+  10 ms (``writeToHistoryMultipleOfMaximumTimestep = 100``) instead of every 1 ms (10), run once more
+  on 2 workers: collecting copies every run's watch tables (240 watches per sample), so its cost
+  follows the number of samples.
+
+The two MPI campaigns' collected data are compared bit for bit.
+
+Run from the repository root: ``.venv/bin/python benchmarks/campaign.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import datetime
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+PYTHON = Path(sys.executable)
+MPIEXEC = PYTHON.parent / "mpiexec"
+JOB = """[main]
+worldFile = wearballs.wld
+jobs = 000-004
+lexicoRandomizationRange = 0.0, 0.0
+maxMinutesForJob = 10
+createNextVersionAtEnd = 1
+[campaign]
+c'amplitude = 0.004, 0.005
+c'omega = 62.83185307, 70, 80, 90
+"""
+COARSE = "world.writeToHistoryMultipleOfMaximumTimestep = 100\n"
+"""The same campaign with a history sample every 10 ms instead of every 1 ms."""
+LAUNCHES = {
+    "MPI, 1 worker": [str(MPIEXEC), "-n", "2", str(PYTHON), "-m", "mpi4py", "-m", "mbds.cli.campaign", "run"],
+    "MPI, 2 workers": [str(MPIEXEC), "-n", "3", str(PYTHON), "-m", "mpi4py", "-m", "mbds.cli.campaign", "run"],
+    "pool, 2 workers": [str(PYTHON), "-m", "mbds.cli.campaign", "run", "--workers", "2"],
+}
+SINGLE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS",
+                                        "NUMBA_NUM_THREADS")}
+
+
+def make_campaign(folder: Path, extra: str = "") -> Path:
+    """A copy of campaigns/wearballs (model files only) with the campaign's job file (``extra``
+    added to its [campaign] section); its path."""
+    shutil.copytree(ROOT / "campaigns" / "wearballs", folder,
+                    ignore=shutil.ignore_patterns("[0-9][0-9][0-9]", "campaign", ".*"))
+    job = folder / "campaign.job"
+    job.write_text(JOB + extra)
+    return job
+
+
+def cold_warm_up(job: Path, env: dict) -> tuple[float, int]:
+    """Seconds to compile the campaign's models into an empty cache, and how many structures."""
+    code = ("import sys, time; from mbds.campaign.plan import expand; from mbds.campaign.run import warm_up; "
+            "t = time.perf_counter(); n = warm_up(expand(sys.argv[1])); print(time.perf_counter() - t, n)")
+    out = subprocess.run([str(PYTHON), "-c", code, str(job)], env=env, capture_output=True, text=True, check=True)
+    seconds, structures = out.stdout.split()
+    return float(seconds), int(structures)
+
+
+def launch(name: str, job: Path, env: dict) -> dict:
+    """Run the campaign as ``name`` says; the figures of its ledger."""
+    begun = time.perf_counter()
+    done = subprocess.run(LAUNCHES[name] + [str(job)], env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - begun
+    if done.returncode != 0:
+        raise SystemExit(f"{name}: exit {done.returncode}\n{done.stderr}")
+    tasks = json.loads((job.parent / "campaign" / "ledger.json").read_text())["tasks"]
+    start = {k: _seconds(e["start"]) for k, e in tasks.items()}
+    end = {k: _seconds(e["end"]) for k, e in tasks.items()}
+    idle = []
+    for rank in {e.get("rank") for e in tasks.values()} - {None}:
+        mine = sorted((k for k, e in tasks.items() if e.get("rank") == rank), key=start.get)
+        idle += [start[b] - end[a] for a, b in zip(mine, mine[1:])]
+    return {
+        "wall": wall,
+        "loop": max(end.values()) - min(start.values()),
+        "tasks": sum(e["wall"] for e in tasks.values()),
+        "count": len(tasks),
+        "all_done": all(e["state"] == "done" for e in tasks.values()),
+        "sched": np.mean([end[k] - start[k] - e["wall"] for k, e in tasks.items()]),
+        "idle": np.mean(idle) if idle else float("nan"),
+        "compiled": sum(e["compiled"] for e in tasks.values()),
+        "ranks": sorted({e["rank"] for e in tasks.values() if "rank" in e}),
+        "run_walls": {k: e["wall"] for k, e in tasks.items() if k.endswith("/run")},
+    }
+
+
+def _seconds(stamp: str) -> float:
+    return datetime.fromisoformat(stamp).timestamp()
+
+
+def run_task_split(job: Path, run_walls: dict) -> tuple[float, float, float]:
+    """Mean seconds per run task of loading the model and of simulating, timed here on chain
+    v00's versions (after one untimed load), and the mean run task wall time of those versions."""
+    from mbds.model.load import load_model
+    from mbds.simulation.buffers import RunSettings
+    from mbds.simulation.run import simulate
+
+    folders = sorted((job.parent / "campaign" / "v00").glob("[0-9][0-9][0-9]"))[:-1]  # the last is not run
+    load_model(folders[0])
+    loads, sims, walls = [], [], []
+    for folder in folders:
+        begun = time.perf_counter()
+        model = load_model(folder)
+        loads.append(time.perf_counter() - begun)
+        begun = time.perf_counter()
+        simulate(model, RunSettings(model.break_time))
+        sims.append(time.perf_counter() - begun)
+        walls.append(run_walls[f"v00/{folder.name}/run"])
+    return float(np.mean(loads)), float(np.mean(sims)), float(np.mean(walls))
+
+
+def collected(job: Path) -> tuple[float, object]:
+    """Seconds to merge the campaign into campaign.nc (in this process), and the tree read back."""
+    from mbds.campaign.collect import collect, open_campaign
+    from mbds.campaign.plan import expand
+
+    plan = expand(job)
+    begun = time.perf_counter()
+    path = collect(plan)
+    seconds = time.perf_counter() - begun
+    return seconds, open_campaign(path)
+
+
+def _megabytes(job: Path) -> str:
+    """Size of the campaign file and the mean uncompressed size of a run's watch tables."""
+    import netCDF4
+
+    folder = job.parent / "campaign"
+    with netCDF4.Dataset(folder / "v00" / "000" / "history.nc") as run:
+        tables = sum(v.size * v.dtype.itemsize for v in run.variables.values() if v.dimensions == ("time", "watch"))
+    return f"campaign.nc {(folder / 'campaign.nc').stat().st_size / 1e6:.1f} MB, watch tables {tables / 1e6:.1f} MB per run"
+
+
+def identical(a, b) -> bool:
+    """Whether two collected campaigns hold the same data (wall times aside)."""
+    for node in a.subtree:
+        for name, variable in node.ds.data_vars.items():
+            if name != "wall" and not np.array_equal(variable.values, b[node.path].ds[name].values):
+                return False
+    return True
+
+
+def main() -> int:
+    import warnings
+
+    from mbds.errors import ModelWarning
+
+    warnings.simplefilter("ignore", ModelWarning)
+    with tempfile.TemporaryDirectory(prefix="mbds-campaign-bench-") as temp:
+        temp = Path(temp)
+        env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"), **SINGLE_THREAD)
+        os.environ["MBDS_CACHE_DIR"] = env["MBDS_CACHE_DIR"]
+        cold, structures = cold_warm_up(make_campaign(temp / "warm-up"), env)
+        print(f"campaign: 8 chains x 5 versions of wearballs (1.5 s each), 40 runs + 40 wear steps; "
+              f"cold compile {cold:.1f} s ({structures} model structure), once, before the launches")
+        figures, jobs = {}, {}
+        for name in LAUNCHES:
+            jobs[name] = make_campaign(temp / name.replace(" ", "_").replace(",", ""))
+            figures[name] = launch(name, jobs[name], env)
+        print(f"\n{'launch':<16} {'ranks':>9} {'wall s':>7} {'loop s':>7} {'tasks s':>8} {'sched ms':>9} "
+              f"{'idle ms':>8} {'compiled':>9}")
+        for name, f in figures.items():
+            ranks = ",".join(map(str, f["ranks"])) if name.startswith("MPI") else "-"
+            print(f"{name:<16} {ranks:>9} {f['wall']:>7.2f} {f['loop']:>7.2f} {f['tasks']:>8.2f} "
+                  f"{1e3 * f['sched']:>9.1f} {1e3 * f['idle']:>8.1f} {f['compiled']:>9d}"
+                  + ("" if f["all_done"] else "  (not all tasks done)"))
+        one, two, pool = (figures[name] for name in LAUNCHES)
+        print(f"\nspeed-up, 2 workers over 1 (MPI): whole command {one['wall'] / two['wall']:.3f}, "
+              f"loop {one['loop'] / two['loop']:.3f}")
+        print(f"parallel efficiency (MPI, 3 processes: 1 scheduling + 2 workers on 2 cores): "
+              f"whole command {one['wall'] / (2 * two['wall']):.3f}, loop {one['loop'] / (2 * two['loop']):.3f}")
+        print(f"pool of 2 against MPI 1 worker: whole command {one['wall'] / (2 * pool['wall']):.3f}, "
+              f"loop {one['loop'] / (2 * pool['loop']):.3f}")
+        load, sim, wall = run_task_split(jobs["MPI, 1 worker"], one["run_walls"])
+        print(f"\nrun task (v00's versions, mean): {wall:.3f} s = start-up {load:.3f} s (read, assemble, load "
+              f"compiled code) + simulation {sim:.3f} s + writing and the rest {wall - load - sim:.3f} s; "
+              f"overhead {(wall - sim) / wall:.1%}")
+        seconds, tree = collected(jobs["MPI, 2 workers"])
+        print(f"collection, history every 1 ms: {seconds:.2f} s for {two['tasks']:.1f} s of compute "
+              f"({seconds / two['tasks']:.2%}), {_megabytes(jobs['MPI, 2 workers'])}")
+        coarse = make_campaign(temp / "coarse", COARSE)
+        sampled = launch("MPI, 2 workers", coarse, env)
+        seconds_coarse, _ = collected(coarse)
+        print(f"collection, history every 10 ms: {seconds_coarse:.2f} s for {sampled['tasks']:.1f} s of compute "
+              f"({seconds_coarse / sampled['tasks']:.2%}), {_megabytes(coarse)}")
+        _, other = collected(jobs["MPI, 1 worker"])
+        print(f"collected data of 1 and 2 workers bit-identical: {identical(tree, other)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
