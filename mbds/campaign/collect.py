@@ -79,12 +79,12 @@ def copy_root_group(source: Path, group: netCDF4.Group) -> xr.Dataset:
     """Copy the root group of the run file ``source`` (dimensions, variables with their
     attributes, chunks and compression, and its attributes; not its subgroups) into ``group``;
     what the summary takes from it: the variables ``SUMMARY_VARIABLES`` and the attributes."""
-    kept = {}
+    kept, pairs = {}, []
     with netCDF4.Dataset(source) as run:
         run.set_auto_maskandscale(False)
         for name, dimension in run.dimensions.items():
             group.createDimension(name, None if dimension.isunlimited() else len(dimension))
-        for name, variable in run.variables.items():
+        for name, variable in run.variables.items():  # define all first: each switch to writing costs
             attributes = {key: variable.getncattr(key) for key in variable.ncattrs()}
             filters = variable.filters() or {}
             chunks = variable.chunking()
@@ -95,11 +95,13 @@ def copy_root_group(source: Path, group: netCDF4.Group) -> xr.Dataset:
                 chunksizes=None if chunks == "contiguous" else chunks)
             copy.set_auto_maskandscale(False)
             copy.setncatts(attributes)
-            copy[...] = values = variable[...]
-            if name in SUMMARY_VARIABLES:
-                kept[name] = (variable.dimensions, values, attributes)
+            pairs.append((name, variable, copy, attributes))
         attributes = {key: run.getncattr(key) for key in run.ncattrs()}
         group.setncatts(attributes)
+        for name, variable, copy, variable_attributes in pairs:
+            copy[...] = values = variable[...]
+            if name in SUMMARY_VARIABLES:
+                kept[name] = (variable.dimensions, values, variable_attributes)
     return xr.Dataset(kept, attrs=attributes)
 
 
