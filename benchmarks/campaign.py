@@ -1,8 +1,8 @@
 """A wear campaign of 8 chains on MPI ranks: 1 worker against 2 workers, in one run.
 
 The campaign: a copy of campaigns/wearballs with ``[campaign]`` varying ``c'amplitude`` (2 values)
-and ``c'omega`` (4 values), 8 chains of versions 000-004 (full breakTime of 1.5 s each), every
-version worn into the next: 40 runs and 40 wear steps. It runs twice from scratch,
+and ``c'omega`` (4 values), 8 chains of versions 000-009 (full breakTime of 1.5 s each), every
+version worn into the next: 80 runs and 80 wear steps. It runs twice from scratch,
 
 - ``mpiexec -n 2``: the scheduling rank and 1 worker,
 - ``mpiexec -n 3``: the scheduling rank and 2 workers (the machine has 2 cores; rank 0 only
@@ -55,7 +55,7 @@ PYTHON = Path(sys.executable)
 MPIEXEC = PYTHON.parent / "mpiexec"
 JOB = """[main]
 worldFile = wearballs.wld
-jobs = 000-004
+jobs = 000-009
 lexicoRandomizationRange = 0.0, 0.0
 maxMinutesForJob = 10
 createNextVersionAtEnd = 1
@@ -188,7 +188,7 @@ def main() -> int:
         env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"), **SINGLE_THREAD)
         os.environ["MBDS_CACHE_DIR"] = env["MBDS_CACHE_DIR"]
         cold, structures = cold_warm_up(make_campaign(temp / "warm-up"), env)
-        print(f"campaign: 8 chains x 5 versions of wearballs (1.5 s each), 40 runs + 40 wear steps; "
+        print(f"campaign: 8 chains x 10 versions of wearballs (1.5 s each), 80 runs + 80 wear steps; "
               f"cold compile {cold:.1f} s ({structures} model structure), once, before the launches")
         figures, jobs = {}, {}
         for name in LAUNCHES:

@@ -9,7 +9,9 @@ The scheduling loop (:func:`mbds.campaign.run.run_campaign`) sees every executor
 - ``results() -> list[(task id, result)]``: the tasks finished since the last call, each with
   the result of :func:`mbds.campaign.tasks.run_task`;
 - ``stop()``: ask the running tasks to stop soon (their runs write what they have);
-- ``close()``: release the workers.
+- ``close()``: release the workers;
+- ``inline``: whether ``submit`` performs the task before it returns (the loop then saves the
+  ledger before submitting, so that ``status`` shows the task running).
 
 Only the scheduling process calls these, and only it writes the ledger. Each task is performed by
 ``run_task`` in one process, so a task's outputs do not depend on the executor or the number of
@@ -33,6 +35,8 @@ TASK, RESULT, STOP, QUIT = 1, 2, 3, 4  # MPI message tags
 
 class Sequential:
     """One task at a time, in this process (tests, a laptop without MPI)."""
+
+    inline = True
 
     def __init__(self, stopping):
         self._stopping = stopping
@@ -61,6 +65,8 @@ class Sequential:
 class Pool:
     """``workers`` processes of a :class:`concurrent.futures.ProcessPoolExecutor`, each running
     one task at a time; a shared event tells their runs to stop."""
+
+    inline = False
 
     def __init__(self, workers: int):
         context = multiprocessing.get_context("spawn")  # no forked copies of this process's state
@@ -107,6 +113,8 @@ def _pool_task(task: Task) -> dict:
 class Ranks:
     """MPI ranks 1 ... size - 1 of ``comm``, each running one task at a time; this process
     (rank 0) only schedules. The workers run :func:`serve`."""
+
+    inline = False
 
     def __init__(self, comm):
         self._comm = comm
@@ -157,8 +165,10 @@ def serve(comm, stopping) -> None:
         return stopping() or comm.Iprobe(source=0, tag=STOP)
 
     while True:
+        delay = POLL / 16  # the next task usually comes within a few ms of the last result
         while not comm.Iprobe(source=0, tag=MPI.ANY_TAG, status=status):
-            time.sleep(POLL)
+            time.sleep(delay)
+            delay = min(2 * delay, POLL)
         message = comm.recv(source=0, tag=status.Get_tag())
         if status.Get_tag() == QUIT:
             return

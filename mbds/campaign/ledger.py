@@ -90,10 +90,11 @@ class Ledger:
         """Everything stored about a task (empty when nothing is)."""
         return dict(self.tasks.get(task_id, {}))
 
-    def mark(self, task_id: str, state: str, **info) -> None:
+    def mark(self, task_id: str, state: str, save: bool = True, **info) -> None:
         """Set the state of a task with its ``info`` (JSON values: ``reason``, ``rank``,
-        ``wall`` in s, ``output``, ...) and save. ``running`` stamps ``start`` and starts a new
-        entry; ``done`` and ``failed`` stamp ``end``."""
+        ``wall`` in s, ``output``, ...) and save (unless told not to: a caller marking several
+        tasks saves once after them). ``running`` stamps ``start`` and starts a new entry;
+        ``done`` and ``failed`` stamp ``end``."""
         if state not in STORED_STATES:
             raise ValueError(f"unknown task state {state!r}")
         entry = {} if state in (PENDING, RUNNING) else self.tasks.get(task_id, {})
@@ -101,7 +102,8 @@ class Ledger:
         if state != PENDING:
             entry["start" if state == RUNNING else "end"] = utc_now()
         self.tasks[task_id] = entry
-        self.save()
+        if save:
+            self.save()
 
     def bind(self, plan: Plan) -> None:
         """Check the ledger against the plan (:meth:`check`); a new ledger takes the plan's

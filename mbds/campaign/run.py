@@ -91,9 +91,11 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
     running: set[str] = set()
     told = False
     while True:
+        changed = False
         for task_id, result in executor.results():
             running.discard(task_id)
-            ledger.mark(task_id, **result)
+            ledger.mark(task_id, save=False, **result)
+            changed = True
             {DONE: outcome.done, FAILED: outcome.failed, PENDING: outcome.stopped}[result["state"]].append(task_id)
             if progress is not None:
                 progress(_count_done(plan, ledger), len(plan.tasks))
@@ -105,8 +107,11 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
                 if executor.free() <= 0 or stopping():
                     break
                 running.add(task.id)
-                ledger.mark(task.id, RUNNING, **executor.where())
-                executor.submit(task)
+                ledger.mark(task.id, RUNNING, save=executor.inline, **executor.where())
+                executor.submit(task)  # the ledger is saved after the tasks are handed out
+                changed = True
+        if changed:
+            ledger.save()
         if not running:
             break
         time.sleep(POLL)
