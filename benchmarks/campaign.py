@@ -213,13 +213,16 @@ def main() -> int:
               f"compiled code) + simulation {sim:.3f} s + writing and the rest {wall - load - sim:.3f} s; "
               f"overhead {(wall - sim) / wall:.1%}")
         seconds, tree = collected(jobs["MPI, 2 workers"])
+        runs = sum(1 for k in two["run_walls"])
         print(f"collection, history every 1 ms: {seconds:.2f} s for {two['tasks']:.1f} s of compute "
-              f"({seconds / two['tasks']:.2%}), {_megabytes(jobs['MPI, 2 workers'])}")
+              f"({seconds / two['tasks']:.2%}; {1e3 * seconds / runs:.0f} ms per run), "
+              f"{_megabytes(jobs['MPI, 2 workers'])}")
         coarse = make_campaign(temp / "coarse", COARSE)
         sampled = launch("MPI, 2 workers", coarse, env)
         seconds_coarse, _ = collected(coarse)
         print(f"collection, history every 10 ms: {seconds_coarse:.2f} s for {sampled['tasks']:.1f} s of compute "
-              f"({seconds_coarse / sampled['tasks']:.2%}), {_megabytes(coarse)}")
+              f"({seconds_coarse / sampled['tasks']:.2%}; {1e3 * seconds_coarse / runs:.0f} ms per run), "
+              f"{_megabytes(coarse)}")
         _, other = collected(jobs["MPI, 1 worker"])
         print(f"collected data of 1 and 2 workers bit-identical: {identical(tree, other)}")
     return 0
