@@ -217,7 +217,7 @@ def main() -> int:
               f"whole command {one['wall'] / (2 * two['wall']):.3f}, loop {one['loop'] / (2 * two['loop']):.3f}")
         print(f"  = workers busy {two['tasks'] / (2 * two['loop']):.3f} of the 2-worker loop "
               f"x tasks' speed with 2 at once {one['tasks'] / two['tasks']:.3f} of alone "
-              f"x 1 worker busy {one['loop'] / one['tasks']:.3f}")
+              f"x 1 worker's loop over its tasks {one['loop'] / one['tasks']:.3f}")
         print(f"pool of 2 against MPI 1 worker: whole command {one['wall'] / (2 * pool['wall']):.3f}, "
               f"loop {one['loop'] / (2 * pool['loop']):.3f}")
         load, sim, wall = run_task_split(jobs["MPI, 1 worker"], one["run_walls"])
