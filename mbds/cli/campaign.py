@@ -140,7 +140,7 @@ def _schedule(path: Path, workers: int, ranks) -> int:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from mbds.campaign import executors
-    from mbds.campaign.ledger import Ledger
+    from mbds.campaign.ledger import DONE, Ledger
     from mbds.campaign.plan import expand
     from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
 
@@ -159,7 +159,7 @@ def _schedule(path: Path, workers: int, ranks) -> int:
         bar = Progress(TextColumn("tasks"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                        console=console, disable=not console.is_terminal)
         with bar:
-            shown = bar.add_task("tasks", total=len(plan.tasks))
+            shown = bar.add_task("tasks", total=len(plan.tasks), completed=_count(plan, DONE))
             try:
                 outcome = run_campaign(plan, executor, stopping,
                                        lambda done, total: bar.update(shown, completed=done), workers)
@@ -171,15 +171,15 @@ def _schedule(path: Path, workers: int, ranks) -> int:
     if outcome.interrupted:
         print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
         return EXIT_STOPPED
-    return EXIT_FAILED if outcome.failed or _unfinished(plan) else 0
+    return EXIT_FAILED if outcome.failed or _count(plan, DONE) < len(plan.tasks) else 0
 
 
-def _unfinished(plan) -> bool:
-    """Whether some task of the campaign is not done (failed or blocked)."""
-    from mbds.campaign.ledger import DONE, Ledger
+def _count(plan, state: str) -> int:
+    """How many tasks of the campaign are in ``state`` (as the ledger has them, blocked derived)."""
+    from mbds.campaign.ledger import Ledger
     from mbds.campaign.plan import task_states
 
-    return any(state != DONE for state in task_states(plan, Ledger.read(plan.folder)).values())
+    return sum(s == state for s in task_states(plan, Ledger.read(plan.folder)).values())
 
 
 def _mpi_world():
