@@ -65,13 +65,19 @@ def collect(plan: Plan) -> Path:
     return path
 
 
-def open_campaign(path: str | Path) -> xr.DataTree:
-    """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one), read
-    into memory."""
+def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
+    """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one), opened
+    lazily as xarray opens files (values are read when used; ``tree.close()`` releases the file),
+    or read whole into memory and closed with ``load=True``. ModelError when there is none."""
     path = Path(path)
     if path.is_dir():
         path = path / CAMPAIGN_FILE
-    with xr.open_datatree(path, engine="netcdf4") as tree:
+    if not path.is_file():
+        raise ModelError("no campaign file; collect the campaign first: mbds-campaign collect", path)
+    tree = xr.open_datatree(path, engine="netcdf4")
+    if not load:
+        return tree
+    with tree:
         return tree.load()
 
 

@@ -9,10 +9,12 @@ import sys
 import time
 
 import numpy as np
+import pytest
 
 import mbds
 from mbds.campaign.ledger import Ledger
 from mbds.campaign.plan import RUN, expand
+from mbds.errors import ModelError
 from mbds.io.folder import read_model_files
 from tests.campaign.models import campaign, two_mass
 
@@ -75,6 +77,15 @@ def test_a_failing_variant_stops_its_chain_only_and_the_campaign_collects(tmp_pa
             np.testing.assert_array_equal(node["point_lost_work"].values, at["point_lost_work"].values)
             assert node.ds.sizes["time"] > 10
     assert "v02" not in tree.children and "v03" not in tree.children
+    loaded = mbds.open_campaign(plan.folder / "campaign.nc", load=True)  # read whole, file closed
+    assert loaded.identical(tree)
+    tree.close()
+
+
+def test_open_campaign_before_collect_says_what_to_do(tmp_path):
+    job = two_mass(tmp_path, FAILING, jobs="000")
+    with pytest.raises(ModelError, match="collect the campaign first"):
+        mbds.open_campaign(expand(job).folder)
 
 
 def test_a_hard_kill_loses_only_the_running_tasks(tmp_path):
