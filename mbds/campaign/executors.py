@@ -137,7 +137,7 @@ class Ranks:
 
         done = []
         status = MPI.Status()
-        while self._comm.Iprobe(source=MPI.ANY_SOURCE, tag=RESULT, status=status):
+        while _probe(self._comm, MPI.ANY_SOURCE, RESULT, status):
             rank = status.Get_source()
             task_id, result = self._comm.recv(source=rank, tag=RESULT)
             del self._busy[rank]
@@ -166,7 +166,7 @@ def serve(comm, stopping) -> None:
 
     while True:
         delay = POLL / 16  # the next task usually comes within a few ms of the last result
-        while not comm.Iprobe(source=0, tag=MPI.ANY_TAG, status=status):
+        while not _probe(comm, 0, MPI.ANY_TAG, status):
             time.sleep(delay)
             delay = min(2 * delay, POLL)
         message = comm.recv(source=0, tag=status.Get_tag())
@@ -174,3 +174,10 @@ def serve(comm, stopping) -> None:
             return
         if status.Get_tag() == TASK:
             comm.send((message.id, run_task(message, told_to_stop)), dest=0, tag=RESULT)
+
+
+def _probe(comm, source: int, tag: int, status) -> bool:
+    """Whether a message from ``source`` with ``tag`` is waiting (its envelope in ``status``).
+    Probes twice: MPICH shows a message that has arrived to the probe after the one that moved it
+    in, so one probe per poll would see it a poll late."""
+    return comm.Iprobe(source=source, tag=tag, status=status) or comm.Iprobe(source=source, tag=tag, status=status)
