@@ -225,7 +225,7 @@ def main() -> int:
               f"compiled code) + simulation {sim:.3f} s + writing and the rest {wall - load - sim:.3f} s; "
               f"overhead {(wall - sim) / wall:.1%}")
         seconds, tree = collected(jobs["MPI, 2 workers"])
-        runs = sum(1 for k in two["run_walls"])
+        runs = len(two["run_walls"])
         print(f"collection, history every 1 ms: {seconds:.2f} s for {two['tasks']:.1f} s of compute "
               f"({seconds / two['tasks']:.2%}; {1e3 * seconds / runs:.0f} ms per run), "
               f"{_megabytes(jobs['MPI, 2 workers'])}")

@@ -155,6 +155,11 @@ def task_states(plan: Plan, ledger: Ledger) -> dict[str, str]:
     return states
 
 
+def done_count(plan: Plan, ledger: Ledger) -> int:
+    """How many tasks of the plan are done."""
+    return sum(state == DONE for state in task_states(plan, ledger).values())
+
+
 def ready_tasks(plan: Plan, ledger: Ledger) -> list[Task]:
     """The tasks to start now, in plan order: pending, with every task they depend on done."""
     states = task_states(plan, ledger)

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
-from mbds.campaign.plan import Plan, ready_tasks, task_states
+from mbds.campaign.plan import Plan, done_count, ready_tasks
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
 from mbds.expr.cache import source_hash
@@ -98,7 +98,7 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             changed = True
             {DONE: outcome.done, FAILED: outcome.failed, PENDING: outcome.stopped}[result["state"]].append(task_id)
             if progress is not None:
-                progress(_count_done(plan, ledger), len(plan.tasks))
+                progress(done_count(plan, ledger), len(plan.tasks))
         if stopping() and not told:
             told = outcome.interrupted = True
             executor.stop()
@@ -120,10 +120,6 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
         {"host": socket.gethostname(), "workers": workers, "start": outcome.start, "end": outcome.end})
     ledger.save()
     return outcome
-
-
-def _count_done(plan: Plan, ledger: Ledger) -> int:
-    return sum(state == DONE for state in task_states(plan, ledger).values())
 
 
 @contextlib.contextmanager

@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import time
 import warnings
-
 from collections.abc import Callable
 
 from mbds.campaign.compiles import counted_compiles
@@ -40,7 +39,6 @@ from mbds.simulation.job import incomplete, next_version, time_limits
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import run_version
 from mbds.simulation.versions import create_model_copy, ensure_version
-
 
 STOPPED = "the campaign was told to stop"
 

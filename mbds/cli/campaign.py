@@ -137,11 +137,17 @@ def run(
 
 def _schedule(path: Path, workers: int, ranks) -> int:
     """Rank 0 or the only process: check, warm up, run the loop; the exit code."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+    )
 
     from mbds.campaign import executors
-    from mbds.campaign.ledger import DONE, Ledger
-    from mbds.campaign.plan import expand
+    from mbds.campaign.ledger import Ledger
+    from mbds.campaign.plan import done_count, expand
     from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
 
     plan = expand(path)
@@ -159,7 +165,7 @@ def _schedule(path: Path, workers: int, ranks) -> int:
         bar = Progress(TextColumn("tasks"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                        console=console, disable=not console.is_terminal)
         with bar:
-            shown = bar.add_task("tasks", total=len(plan.tasks), completed=_count(plan, DONE))
+            shown = bar.add_task("tasks", total=len(plan.tasks), completed=done_count(plan, Ledger.read(plan.folder)))
             try:
                 outcome = run_campaign(plan, executor, stopping,
                                        lambda done, total: bar.update(shown, completed=done), workers)
@@ -171,15 +177,7 @@ def _schedule(path: Path, workers: int, ranks) -> int:
     if outcome.interrupted:
         print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
         return EXIT_STOPPED
-    return EXIT_FAILED if outcome.failed or _count(plan, DONE) < len(plan.tasks) else 0
-
-
-def _count(plan, state: str) -> int:
-    """How many tasks of the campaign are in ``state`` (as the ledger has them, blocked derived)."""
-    from mbds.campaign.ledger import Ledger
-    from mbds.campaign.plan import task_states
-
-    return sum(s == state for s in task_states(plan, Ledger.read(plan.folder)).values())
+    return EXIT_FAILED if outcome.failed or done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks) else 0
 
 
 def _mpi_world():

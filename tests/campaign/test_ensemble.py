@@ -39,7 +39,7 @@ def test_ensemble_wear_uses_the_mean_of_the_replicates_runs(tmp_path):
         with xr.open_dataset(plan.folder / "v00" / "000" / f"r{k}" / "history.nc") as history:
             bird = history["point_body"].values == list(history["body"].values).index("bird")
             losses.append(history["point_lost_work"].values[bird])
-    assert losses[0][0] != losses[1][0] != losses[2][0]  # point 0, the watched one
+    assert len({run[0] for run in losses}) == 3  # point 0, the watched one: three different losses
     mean = (losses[0] + losses[1] + losses[2]) / 3  # by hand
     with xr.open_dataset(plan.folder / "v00" / "001" / WEAR_FILE) as record:
         assert record.attrs["reshaped_bodies"] == "bird"
