@@ -127,7 +127,7 @@ def make_record(
         driver_work=result.drive - start.clock[K.DRIVE_WORK],
         watch_labels=[w.label for w in model.watches],
         watch_absolute=np.array([w.absolute for w in model.watches], dtype=bool),
-        watches=watch_series(result.watches, intervals, arrays.watch_absolute, common),
+        watches=watch_series(result.watches, intervals, common),
         bodies=[b.name for b in model.bodies],
         point_body=np.repeat(np.arange(len(counts)), counts),
         point_number=np.concatenate([np.arange(c) for c in counts]) if len(counts) else np.zeros(0, int),

@@ -9,8 +9,9 @@ The options act on these series in this order, each run on its own:
 - ``timeConstant`` tau > 0: y_k = y_{k-1} exp(-dt_k / tau) + x_k (a decaying sensor);
 - ``cummulativeWork``: work summed from the start of the run;
 - ``absoluteAngleInsteadOfWork``: the angle replaces the work;
-- ``writeAveragedTDivN``: running ratio of summed impulses, sum(T) / sum(N) (x-y watches:
-  sum(X) / sum(Y)), NaN until the first normal impulse.
+- ``writeAveragedTDivN``: running ratio of summed impulses, sum(T) / sum(N), in the
+  normal-tangential frame whatever frame the watch writes its impulses in (the ratio of
+  friction to normal impulse does not depend on the frame); 0 until the first normal impulse.
 """
 
 from __future__ import annotations
@@ -37,9 +38,9 @@ class WatchSeries:
     force: bool
 
 
-def watch_series(sums: np.ndarray, intervals: np.ndarray, absolute: np.ndarray, options: CommonOptions) -> WatchSeries:
+def watch_series(sums: np.ndarray, intervals: np.ndarray, options: CommonOptions) -> WatchSeries:
     """Apply ``options`` to ``sums`` (samples, watches, POINT_COLUMNS); ``intervals`` (samples,)
-    are the sample intervals (s); ``absolute`` (watches,) marks x-y watches."""
+    are the sample intervals (s)."""
     impulse = {}
     for name, column in IMPULSE_COLUMNS.items():
         values = sums[:, :, column]
@@ -55,9 +56,7 @@ def watch_series(sums: np.ndarray, intervals: np.ndarray, absolute: np.ndarray, 
         work = sums[:, :, WORK]
         work = np.cumsum(work, axis=0) if options.cumulative_work else work.copy()
     if options.write_averaged_t_div_n:
-        nt = running_ratio(sums[:, :, IMP_T], sums[:, :, IMP_N])
-        xy = running_ratio(sums[:, :, IMP_X], sums[:, :, IMP_Y])
-        t_div_n = np.where(absolute[None, :], xy, nt)
+        t_div_n = running_ratio(sums[:, :, IMP_T], sums[:, :, IMP_N])
     return WatchSeries(impulse, work, angle, t_div_n, options.convert_impulse_to_force)
 
 
@@ -79,11 +78,11 @@ def decay(values: np.ndarray, intervals: np.ndarray, tau: float) -> np.ndarray:
 
 
 def running_ratio(numerator: np.ndarray, denominator: np.ndarray) -> np.ndarray:
-    """sum(numerator) / sum(denominator) up to each sample (first axis); NaN while the sum of the
-    denominator is 0."""
+    """sum(numerator) / sum(denominator) up to each sample (first axis); 0 while the sum of the
+    denominator is 0 (no contact yet)."""
     num = np.cumsum(numerator, axis=0)
     den = np.cumsum(denominator, axis=0)
-    return np.divide(num, den, out=np.full_like(num, np.nan), where=den != 0)
+    return np.divide(num, den, out=np.zeros_like(num), where=den != 0)
 
 
 def distinct_points(values: np.ndarray, point_start: np.ndarray) -> np.ndarray:

@@ -15,6 +15,7 @@ from typing import Any
 
 from mbds.errors import ModelError, warn
 from mbds.io.text import (
+    MAXINT,
     format_number,
     parse_flag,
     parse_integer,
@@ -83,7 +84,7 @@ def find_section(sections: list[Section], name: str) -> Section | None:
 def setting(key: str, kind: str, default: Any, *aliases: str):
     """A dataclass field read from ``key`` (or an alias), parsed as ``kind``.
 
-    Kinds: ``number``, ``integer``, ``flag``, ``text``, ``expression`` (kept as :class:`Located`
+    Kinds: ``number``, ``integer``, ``minutes`` (a number, or ``MaxInt``), ``flag``, ``text``, ``expression`` (kept as :class:`Located`
     text), ``pair`` (two numbers ``a,b``), ``list`` (comma-separated names), ``numbers``
     (comma-separated numbers).
     """
@@ -99,6 +100,8 @@ def _parse_value(kind: str, entry: Entry, file, separator: str):
         return parse_number(value, file, line, separator)
     if kind == "integer":
         return parse_integer(value, file, line)
+    if kind == "minutes":
+        return MAXINT if value.strip().lower() == "maxint" else parse_number(value, file, line, separator)
     if kind == "flag":
         return parse_flag(value, file, line)
     if kind == "text":
@@ -129,6 +132,8 @@ def _format_value(kind: str, value, separator: str) -> str:
     delimiter = ";" if separator == "," else ","
     if kind == "number":
         return format_number(value, separator)
+    if kind == "minutes":
+        return "MaxInt" if value == MAXINT else format_number(value, separator)
     if kind == "flag":
         return "1" if value else "0"
     if kind in ("pair", "numbers"):

@@ -40,6 +40,8 @@ def incomplete(folder: str | Path) -> str:
     attrs = read_attributes(path)
     if not attrs.get("complete"):
         return f"its run stopped at t = {attrs['end_time']:.9g} s ({attrs['stop_reason']})"
+    if continuation(folder) is not None:  # a continued run is complete at the length asked of it
+        return ""
     length = float(attrs["break_time"] - attrs["start_time"])
     with warnings.catch_warnings():  # the run of the version repeats any warning
         warnings.simplefilter("ignore", ModelWarning)
@@ -47,6 +49,20 @@ def incomplete(folder: str | Path) -> str:
     if not math.isclose(length, full, rel_tol=1e-9):
         return f"its run lasted {length:.9g} s, not the world file's breakTime of {full:.9g} s"
     return ""
+
+
+def continuation(folder: str | Path) -> tuple[int, float] | None:
+    """For a version whose run continues another version's end state (``mbds run --from``):
+    that version's number and the length of the run (s); None for a run from the model's start
+    or a version not run yet."""
+    path = Path(folder) / HISTORY
+    if not path.is_file():
+        return None
+    attrs = read_attributes(path)
+    source = int(attrs.get("continued_from", -1))
+    if source < 0:
+        return None
+    return source, float(attrs["break_time"] - attrs["start_time"])
 
 
 def next_version(folder: str | Path, runs: Sequence[str | Path] = ()) -> Path:
@@ -129,7 +145,7 @@ def read_checked_job(path: str | Path) -> JobFile:
 
 def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
     """Run the job file at ``path``: every listed version without a complete run is run in full
-    from the model's start and, with ``createNextVersionAtEnd = 1``, every complete one without
+    from the model's start (a version continuing another's run, from that run's end) and, with ``createNextVersionAtEnd = 1``, every complete one without
     a successor gets one. The job stops at the first run that does not complete (Ctrl-C,
     ``maxMinutesForJob``, ``maxMinutesForJobs``, ``maxLinesInLog``, a state that is not
     finite); bad input raises ModelError."""
@@ -169,10 +185,17 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
 
 
 def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: float) -> tuple[RunRecord, float]:
-    """Run ``version`` in full under the job's time limits; its record and wall time (s)."""
+    """Run ``version`` in full under the job's time limits; its record and wall time (s). A
+    version that continues another's run (``mbds run --from``) is run again from that run's end
+    state for the same length, so that its start is kept."""
     begun = time.monotonic()
+    options = RunOptions(job=job.settings)
+    continued = continuation(version)
+    if continued is not None:
+        options.start_from, options.duration = continued
+        why += f"; it continues the run of {version_name(continued[0])}, from whose end it runs again"
     shown = report.start(version, why)
-    record = run_version(version, RunOptions(job=job.settings), time_limits(job.settings, deadline, shown))
+    record = run_version(version, options, time_limits(job.settings, deadline, shown))
     wall = time.monotonic() - begun
     report.finish(version, record, wall)
     return record, wall

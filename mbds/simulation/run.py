@@ -77,6 +77,12 @@ def initial_state(model: Model, seed: int) -> RunState:
     )
 
 
+def continue_from(state: RunState) -> None:
+    """Make ``state`` (the end state of a run) start a continued run: its first history sample
+    is taken at once, at the start time, as a run from the model's start takes one at t = 0."""
+    state.clock[K.NEXT_SAMPLE] = state.clock[K.T]
+
+
 def simulate(
     model: Model, run: RunSettings, state: RunState | None = None, progress=None, *, on_events=None,
     chunk: int = HISTORY_CHUNK,

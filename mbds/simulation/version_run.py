@@ -16,7 +16,7 @@ from mbds.io.job import JobSettings
 from mbds.kernel import stepper as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
-from mbds.simulation.run import RunState, RunStopped, initial_state, simulate
+from mbds.simulation.run import RunState, RunStopped, continue_from, initial_state, simulate
 from mbds.simulation.versions import job_settings
 
 PROGRESS_CHUNK = 256
@@ -57,19 +57,25 @@ def run_version(folder: str | Path, options: RunOptions, progress: Progress | No
     t0 = float(state.clock[K.T])
     end = t0 + (options.duration if options.duration is not None else model.break_time)
     alerts: list[str] = []
+    limit = job.max_lines_in_log
 
-    def on_events(rows):
-        alerts.extend(event_alerts(rows, model))
-        limit = job.max_lines_in_log
+    def check_log():
+        """maxLinesInLog counts every line of the log: its fixed lines and the alerts so far."""
         if limit > 0 and HEADER_LINES + len(alerts) > limit:
             del alerts[max(limit - HEADER_LINES, 0) :]
             raise RunStopped(f"the log exceeded maxLinesInLog = {limit} lines")
 
+    def on_events(rows):
+        alerts.extend(event_alerts(rows, model))
+        check_log()
+
     def report(t):
-        progress(t0, t, end, state.clock[K.STEPS] - start.clock[K.STEPS])
+        check_log()
+        if progress is not None:
+            progress(t0, t, end, state.clock[K.STEPS] - start.clock[K.STEPS])
 
     settings = RunSettings(end, seed, tuple(job.lexico_randomization_range))
-    result = simulate(model, settings, state, report if progress else None, on_events=on_events, chunk=PROGRESS_CHUNK)
+    result = simulate(model, settings, state, report, on_events=on_events, chunk=PROGRESS_CHUNK)
     record = make_record(
         model, result, start, seed=seed, break_time=end, continued_from=options.start_from, folder=folder
     )
@@ -87,6 +93,7 @@ def _start_state(model: Model, folder: Path, options: RunOptions) -> tuple[RunSt
         return initial_state(model, options.seed), options.seed
     path = folder.parent / version_name(options.start_from) / FILE_NAME
     state, attrs = read_final_state(path)
+    continue_from(state)
     if state.q.shape != model.q0.shape:
         raise ModelError(f"its run has {len(state.q)} coordinates, this model {len(model.q0)}", path)
     points = sum(len(b.points) for b in model.bodies)

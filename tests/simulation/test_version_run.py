@@ -16,7 +16,7 @@ from mbds.data.history import CLOCK_ENTRIES, read_final_state
 from mbds.kernel import stepper as K
 from mbds.model.load import load_model
 from mbds.simulation.buffers import RunSettings
-from mbds.simulation.run import simulate
+from mbds.simulation.run import continue_from, simulate
 from mbds.simulation.version_run import PROGRESS_CHUNK, RunOptions, run_version
 from mbds.simulation.versions import ensure_version
 from tests.examples import copy_example
@@ -126,9 +126,11 @@ def test_from_starts_exactly_where_the_version_ended(tmp_path):
     version = ensure_version(folder, 1, folder / "000")
     second = run_version(version, RunOptions(duration=0.15, start_from=0))
     assert second.start_time == first.end_time and second.end_time == pytest.approx(0.35)
-    assert second.time[0] > first.end_time
+    assert second.time[0] == first.end_time  # its first sample is its start state
+    np.testing.assert_array_equal(second.q[0], ended.q)
     # the same as continuing the in-memory state without going through the file
     model = load_model(version, version=1)
+    continue_from(ended)
     reference = simulate(model, RunSettings(second.break_time, 0), ended, chunk=PROGRESS_CHUNK)
     np.testing.assert_array_equal(reference.q, second.q)
     np.testing.assert_array_equal(reference.state.clock, second.final_state.clock)
@@ -217,3 +219,44 @@ run_version(Path({str(folder / '000')!r}), RunOptions(duration=0.2))
     assert list(history.parent.glob(".history.nc.*.tmp"))  # the half-written file was a temporary one
     run(folder, duration=0.1)  # the next run clears it away
     assert not list(history.parent.glob(".*.tmp"))
+
+
+def test_max_lines_in_log_counts_the_fixed_lines(tmp_path):
+    """A log of six fixed lines exceeds maxLinesInLog = 1 without any alert: the run stops."""
+    edits = [("2mass.job", "maxMinutesForJob = 5", "maxMinutesForJob = 5\nmaxLinesInLog = 1")]
+    folder = model_copy(tmp_path, edits=edits)
+    record = run(folder)
+    assert not record.complete and "maxLinesInLog = 1" in record.stopped
+    assert record.end_time < 0.5  # the world's breakTime is 0.5 s
+
+
+def test_a_job_keeps_a_continued_version_and_runs_it_again_from_where_it_continues(tmp_path):
+    """`mbds run --from 000` made 001; a job listing 000-001 must neither replace 001's start by
+    the model's start nor run a complete continuation again."""
+    from mbds.simulation.job import run_job
+
+    edits = [("2mass.job", "jobs = 000", "jobs = 000-001")]
+    world = [("2mass.wld", "breakTime = 0.5", "breakTime = 0.1\nwriteToHistoryMultipleOfMaximumTimestep = 1")]
+    folder = model_copy(tmp_path, edits=[*edits, *world])
+    first = run(folder)
+    run(folder, 1, duration=0.3, start_from=0)  # 600 samples: longer than one progress chunk
+    before = (folder / "001" / "history.nc").stat().st_mtime_ns
+    assert run_job(folder / "2mass.job").runs == []  # both complete
+    assert (folder / "001" / "history.nc").stat().st_mtime_ns == before
+
+    def interrupt(*args):
+        raise KeyboardInterrupt
+
+    run_version(folder / "001", RunOptions(duration=0.3, start_from=0), interrupt)  # now incomplete
+    result = run_job(folder / "2mass.job")
+    assert [number for number, *_ in result.runs] == [1]
+    record = result.runs[0][1]
+    assert record.complete and record.continued_from == 0
+    assert record.start_time == first.end_time and record.end_time == pytest.approx(first.end_time + 0.3)
+
+
+def test_job_minutes_may_be_fractional(tmp_path):
+    from mbds.io.job import parse_job
+
+    job = parse_job("[main]\njobs = 000\ndelayStartMinutes = 0.05\nmaxMinutesForJob = 2.5\n", tmp_path / "a.job")
+    assert job.settings.delay_start_minutes == 0.05 and job.settings.max_minutes_for_job == 2.5
