@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
 from mbds.campaign.plan import Plan, done_count, ready_tasks
+from mbds.campaign.priority import by_remaining_work
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
 from mbds.expr.cache import source_hash
@@ -107,7 +108,7 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             told = outcome.interrupted = True
             executor.stop()
         if not told:
-            for task in ready_tasks(plan, ledger):
+            for task in by_remaining_work(plan, ledger, ready_tasks(plan, ledger)):
                 if executor.free() <= 0 or stopping():
                     break
                 running.add(task.id)

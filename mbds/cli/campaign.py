@@ -95,9 +95,12 @@ def collect(path: Path = JOB, debug: bool = DEBUG) -> None:
     mbds.open_campaign)."""
     from mbds.campaign.collect import collect as collect_runs
     from mbds.campaign.plan import expand
+    from mbds.io.lock import folder_lock
 
     with reported_errors(debug):
-        print(f"wrote {collect_runs(expand(path))}")
+        plan = expand(path)
+        with folder_lock(plan.folder, "mbds-campaign collect"):
+            print(f"wrote {collect_runs(plan)}")
 
 
 @app.command()
@@ -140,15 +143,33 @@ def run(
 
 
 def _schedule(path: Path, workers: int, ranks, private_cache: bool) -> int:
-    """Rank 0 or the only process: check, warm up, run the loop; the exit code."""
-    from mbds.campaign import executors
+    """Rank 0 or the only process: check, lock the campaign folder, warm up, run the loop; the
+    exit code."""
     from mbds.campaign.ledger import Ledger
     from mbds.campaign.plan import done_count, expand
-    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
-    from mbds.cli.campaign_progress import CampaignProgress
+    from mbds.io.lock import folder_lock
 
     plan = expand(path)
     Ledger.read(plan.folder).check(plan)
+    plan.folder.mkdir(parents=True, exist_ok=True)
+    with folder_lock(plan.folder, "mbds-campaign run"):
+        outcome = _run_locked(plan, workers, ranks, private_cache)
+    print(f"{len(outcome.done)} tasks done, {len(outcome.failed)} failed"
+          + (f", {len(outcome.stopped)} stopped" if outcome.stopped else ""), file=sys.stderr)
+    if outcome.interrupted:
+        print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
+        return EXIT_STOPPED
+    return EXIT_FAILED if outcome.failed or done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks) else 0
+
+
+def _run_locked(plan, workers: int, ranks, private_cache: bool):
+    """Warm up and run the scheduling loop of ``plan`` (its folder locked); the outcome."""
+    from mbds.campaign import executors
+    from mbds.campaign.ledger import Ledger
+    from mbds.campaign.plan import done_count
+    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
+    from mbds.cli.campaign_progress import CampaignProgress
+
     campaign_cache(plan, private_cache)
     report = CampaignProgress(len(plan.tasks), done_count(plan, Ledger.read(plan.folder)))
     with stop_signals() as stopping:
@@ -175,12 +196,7 @@ def _schedule(path: Path, workers: int, ranks, private_cache: bool) -> int:
             finally:
                 if ranks is None:
                     executor.close()
-    print(f"{len(outcome.done)} tasks done, {len(outcome.failed)} failed"
-          + (f", {len(outcome.stopped)} stopped" if outcome.stopped else ""), file=sys.stderr)
-    if outcome.interrupted:
-        print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
-        return EXIT_STOPPED
-    return EXIT_FAILED if outcome.failed or done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks) else 0
+    return outcome
 
 
 LAUNCHER_SIZES = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "MV2_COMM_WORLD_SIZE", "PMIX_SIZE")

@@ -13,6 +13,7 @@ from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
 from mbds.data.record import RunRecord
+from mbds.io.lock import folder_lock
 from mbds.simulation.version_run import RunOptions, run_version
 from mbds.simulation.versions import run_folder
 
@@ -26,7 +27,7 @@ def run_command(path: Path, options: RunOptions, console: Console) -> int:
     folder = run_folder(path, options.start_from)
     console.print(f"running {escape(str(folder))}", highlight=False)
     wall = time.perf_counter()
-    with interrupt_flag() as interrupted, progress_bar(console) as bar:
+    with folder_lock(folder, "mbds run"), interrupt_flag() as interrupted, progress_bar(console) as bar:
         try:
             record = run_version(folder, options, track(bar, interrupted))
         except KeyboardInterrupt:  # a second Ctrl-C

@@ -23,6 +23,7 @@ from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import run_number, version_name, version_number
 from mbds.io.job import JobFile, JobSettings, read_job
+from mbds.io.lock import folder_lock
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
@@ -151,6 +152,11 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
     finite); bad input raises ModelError."""
     report = report or JobReport()
     job = read_checked_job(path)
+    with folder_lock(job.path.parent, "mbds job"):
+        return _run_job(job, report)
+
+
+def _run_job(job: JobFile, report: JobReport) -> JobResult:
     folder, settings = job.path.parent, job.settings
     result = JobResult()
     listed = f"{job.path.name} ({_listing(job.versions)})"
@@ -195,7 +201,8 @@ def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: flo
         options.start_from, options.duration = continued
         why += f"; it continues the run of {version_name(continued[0])}, from whose end it runs again"
     shown = report.start(version, why)
-    record = run_version(version, options, time_limits(job.settings, deadline, shown))
+    with folder_lock(version, "mbds job"):
+        record = run_version(version, options, time_limits(job.settings, deadline, shown))
     wall = time.monotonic() - begun
     report.finish(version, record, wall)
     return record, wall
