@@ -164,7 +164,7 @@ def _run_job(job: JobFile, report: JobReport) -> JobResult:
         report.note(f"nothing to do: every version of {listed} has a complete run")
         return result
     if settings.delay_start_minutes:
-        report.note(f"waiting {settings.delay_start_minutes} min (delayStartMinutes)")
+        report.note(f"waiting {settings.delay_start_minutes:g} min (delayStartMinutes)")
         time.sleep(60.0 * settings.delay_start_minutes)
     deadline = time.monotonic() + 60.0 * settings.max_minutes_for_jobs
     for number in job.versions:
@@ -175,7 +175,7 @@ def _run_job(job: JobFile, report: JobReport) -> JobResult:
         if not why:
             report.note(f"{version}: complete, not run again")
         elif time.monotonic() >= deadline:
-            result.stopped = f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min reached before {version}"
+            result.stopped = f"maxMinutesForJobs = {settings.max_minutes_for_jobs:g} min reached before {version}"
             return result
         else:
             record, wall = _run(version, why, job, report, deadline)
@@ -217,9 +217,9 @@ def time_limits(settings: JobSettings, deadline: float = math.inf, shown: Progre
     def progress(start, now, end, steps):
         clock = time.monotonic()
         if clock > own_deadline:
-            raise RunStopped(f"maxMinutesForJob = {settings.max_minutes_for_job} min exceeded")
+            raise RunStopped(f"maxMinutesForJob = {settings.max_minutes_for_job:g} min exceeded")
         if clock > deadline:
-            raise RunStopped(f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min exceeded")
+            raise RunStopped(f"maxMinutesForJobs = {settings.max_minutes_for_jobs:g} min exceeded")
         if shown is not None:
             shown(start, now, end, steps)
 
