@@ -39,6 +39,7 @@ import xarray as xr
 from mbds import __version__
 from mbds.campaign.ledger import DONE, Ledger
 from mbds.campaign.plan import RUN, Plan, Task
+from mbds.campaign.replicates import identical_replicates
 from mbds.campaign.section import ENSEMBLE
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.data.references import describe, open_described
@@ -189,6 +190,7 @@ def summary(plan: Plan, ledger: Ledger, runs: list[Task], histories: dict[str, x
 def provenance(plan: Plan, ledger: Ledger) -> dict:
     """Attributes of the campaign file: what made it, where and when."""
     runs = ledger.campaign.get("runs", [])
+    same, complete = identical_replicates(plan, ledger)
     return {
         "title": f"mbds campaign of {plan.job.path.name}",
         "mbds_version": __version__,
@@ -203,6 +205,10 @@ def provenance(plan: Plan, ledger: Ledger) -> dict:
         "start": runs[0]["start"] if runs else "",
         "end": runs[-1]["end"] if runs else "",
         "runs": json.dumps(runs),
+        "identical_replicates": json.dumps(same),
+        "identical_replicates_note": (f"{len(same)} of {complete} versions with all replicates run have "
+                                      "bit-identical replicates: the lexicographic randomisation decided no pivot there"
+                                      if complete else ""),
     }
 
 
