@@ -44,7 +44,7 @@ sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
 
-from mbds.kernel import stepper as K  # noqa: E402
+from mbds.kernel import layout as K  # noqa: E402
 from mbds.model.load import load_model  # noqa: E402
 from mbds.simulation.buffers import RunSettings  # noqa: E402
 from mbds.simulation.run import simulate  # noqa: E402

@@ -13,7 +13,7 @@ from mbds import __version__
 from mbds.data.record import RunRecord
 from mbds.errors import ModelError
 from mbds.io.text import atomic_path
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.simulation.run import RunState
 
 FILE_NAME = "history.nc"

@@ -19,7 +19,7 @@ import numpy as np
 
 from mbds.data.record import RunRecord
 from mbds.io.text import write_atomic
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.model.load import Model
 
 NUMBER = "%.10g"

@@ -9,7 +9,7 @@ import numpy as np
 
 from mbds.data.watches import WatchSeries, distinct_points, smooth_points, watch_series
 from mbds.io.coordinates import CoordinateName
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
 from mbds.model.load import Model
 from mbds.simulation.run import RunResult, RunState

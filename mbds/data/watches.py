@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mbds.io.watches import CommonOptions
-from mbds.kernel.stepper import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, WORK
+from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, WORK
 
 IMPULSE_COLUMNS = {"normal": IMP_N, "tangential": IMP_T, "x": IMP_X, "y": IMP_Y}
 

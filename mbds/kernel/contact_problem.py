@@ -17,8 +17,30 @@ forces, velocities in place of accelerations) serves the compression and expansi
 
 from __future__ import annotations
 
+import numpy as np
+
+from mbds.kernel.events import log_event
 from mbds.kernel.jit import jit
-from mbds.kernel.linalg import cholesky_solve_row
+from mbds.kernel.layout import (
+    DT_MAX,
+    EVENT_BAD_LAW,
+    EVENT_LCP_RAY,
+    MAX_PEN,
+    MAX_PIVOTS,
+    PIVOT_MAX,
+    PIVOT_MIN,
+)
+from mbds.kernel.lcp import SOLVED, lemke
+from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row
+
+REST_FRACTION = 0.01
+"""A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
+dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration."""
+STICK_FRACTION = 1e-3
+"""A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
+stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero."""
+CLOSED_FRACTION = 0.01
+"""A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 
 
 @jit
@@ -101,3 +123,106 @@ def tangential_forces(active, na, stick, sign, laws, z, lam_n, lam_t):
             h += 1
         else:
             lam_t[c] = -laws[c, 0] * sign[c] * z[a]
+
+
+@jit(inline="always")
+def _contact_law(contact_law, k, vrel, temperature, p, out):
+    """Evaluate law k into out (mu, eN, eT, nu); non-finite or negative values become 0 and
+    restitutions are clipped to [0, 1]; return False when anything had to be corrected."""
+    contact_law(k, vrel, temperature, p, out)
+    ok = True
+    for j in range(4):
+        if not np.isfinite(out[j]) or out[j] < 0.0:
+            out[j] = 0.0
+            ok = False
+    for j in range(1, 3):
+        if out[j] > 1.0:
+            out[j] = 1.0
+            ok = False
+    return ok
+
+
+@jit(inline="always")
+def contact_laws(contact_law, nc, contacts, model, rows, events, t):
+    """Friction and restitution coefficients of every contact at its current sliding speed."""
+    for i in range(nc):
+        pair = contacts.pair[i]
+        speed = abs(rows.gd_t[i])
+        if not _contact_law(contact_law, model.pair_law[pair], speed, model.pair_temperature[pair], model.p,
+                            rows.law_out):
+            log_event(events, t, EVENT_BAD_LAW, float(pair), speed)
+        for j in range(4):
+            rows.laws[i, j] = rows.law_out[j]
+
+
+@jit(inline="always")
+def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, nc):
+    """M, its Cholesky factor, h, M^-1 h and M^-1 W of the contacts; False if M is not SPD."""
+    mass_matrix(q, t, p, dyn.M)
+    if not cholesky(dyn.M, dyn.L):
+        return False
+    h_vector(q, u, t, p, dyn.hv)
+    cholesky_solve(dyn.L, dyn.hv, dyn.minv_h)
+    inverse_mass_rows(dyn.L, rows.WN, nc, dyn.YN)
+    inverse_mass_rows(dyn.L, rows.WT, nc, dyn.YT)
+    return True
+
+
+@jit
+def solve(m, pb, settings, tol_lex, events, t):
+    """Solve the LCP of size m held in pb.A_flat/pb.bvec; log failures; return True when solved."""
+    if m == 0:
+        return True
+    A = pb.A_flat[: m * m].reshape((m, m))
+    status, pivots = lemke(A, pb.bvec[:m], pb.z[:m], pb.w[:m], settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
+                           int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+    if status == SOLVED:
+        return True
+    log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
+    return False
+
+
+@jit
+def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+    """Contact forces (N) of the na contacts in pb.active and the accelerations
+    acc = M^-1 (h + W lambda)."""
+    active, stick, sign = pb.active, pb.stick, pb.sign
+    n = acc.shape[0]
+    nh = build_matrix(active, na, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
+                      pb.A_flat)
+    m = na + 2 * nh
+    for a in range(na):
+        pb.bvec[a] = row_dot(rows.WN, active[a], dyn.minv_h) + rows.wbar_n[active[a]]
+    for g in range(nh):
+        c = active[pb.hrow[g]]
+        pb.bvec[na + g] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
+        pb.bvec[na + nh + g] = 0.0
+    ok = solve(m, pb, settings, tol_lex, events, t)
+    for a in range(na):
+        lam_n[active[a]] = 0.0
+        lam_t[active[a]] = 0.0
+    if ok:
+        tangential_forces(active, na, stick, sign, rows.laws, pb.z, lam_n, lam_t)
+    for k in range(n):
+        acc[k] = dyn.minv_h[k]
+    for a in range(na):
+        c = active[a]
+        for k in range(n):
+            acc[k] += lam_n[c] * dyn.YN[c, k] + lam_t[c] * dyn.YT[c, k]
+    return ok
+
+
+@jit
+def contact_forces(nc, gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+    """The contacts at rest (closed, not separating faster than the rest velocity), their forces
+    and the accelerations; returns (number of contacts at rest, solved)."""
+    rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+    na = 0
+    for i in range(nc):
+        if gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] <= rest:
+            pb.active[na] = i
+            na += 1
+            pb.stick[i] = abs(rows.gd_t[i]) <= STICK_FRACTION * rest
+            pb.sign[i] = 1.0 if rows.gd_t[i] > 0.0 else -1.0
+    ok = accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
+    return na, ok

@@ -6,13 +6,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.kernel.random import seeded_state
 from mbds.model.arrays import flatten
 from mbds.model.load import Model
 from mbds.simulation.buffers import (
     RunSettings,
-    history_buffers,
+    event_buffer,
     model_tuple,
     settings_array,
     workspace,
@@ -107,23 +107,23 @@ def simulate(
     ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
     chunks: list[tuple] = []
     events: list[np.ndarray] = []
-    history = history_buffers(n, len(model.watches), chunk)
-    event_buffer = (np.zeros((EVENT_CHUNK, 4)), np.zeros(1, dtype=np.int64))
+    history = K.history_buffers(n, len(model.watches), chunk)
+    events_out = event_buffer(EVENT_CHUNK)
     stopped = ""
     while True:
         status = compiled.advance(
             mt, settings, run.break_time, state.clock, state.q, state.u, state.rng, state.point_loss,
-            state.point_interval, history, event_buffer, ws,
+            state.point_interval, history, events_out, ws,
         )
         if status == K.CAPACITY:
             capacity *= 2
             ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
             continue
-        count = int(history[-1][0])
+        count = int(history.count[0])
         chunks.append(tuple(a[:count].copy() for a in history[:-1]))
-        history[-1][0] = 0
-        events.append(event_buffer[0][: event_buffer[1][0]].copy())
-        event_buffer[1][0] = 0
+        history.count[0] = 0
+        events.append(events_out.data[: events_out.count[0]].copy())
+        events_out.count[0] = 0
         if status == K.NOT_FINITE:
             stopped = f"the state is not finite at t = {state.clock[K.T]:.9g} s"
             break

@@ -13,7 +13,7 @@ from mbds.data.record import RunRecord, make_record
 from mbds.errors import ModelError
 from mbds.io.folder import run_number, version_name
 from mbds.io.job import JobSettings
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import RunState, RunStopped, continue_from, initial_state, simulate

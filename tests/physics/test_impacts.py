@@ -4,7 +4,7 @@ oblique impact with friction. Gravity is (c'gx, c'gy); see :mod:`tests.physics.m
 import numpy as np
 import pytest
 
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from tests.physics.models import (
     BodyOnFloor,
     energy_residual,

@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 from mbds.data.history import CLOCK_ENTRIES, read_final_state
-from mbds.kernel import stepper as K
+from mbds.kernel import layout as K
 from mbds.model.load import load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import continue_from, simulate

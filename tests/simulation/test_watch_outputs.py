@@ -10,7 +10,7 @@ from mbds.data.watches import (
     watch_series,
 )
 from mbds.io.watches import CommonOptions
-from mbds.kernel.stepper import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, POINT_COLUMNS, WORK
+from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, POINT_COLUMNS, WORK
 
 INTERVALS = np.array([0.0, 0.5, 0.5, 1.0])
 

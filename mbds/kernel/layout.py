@@ -1,0 +1,110 @@
+"""The stepper's array layout, defined once: indices into its flat arrays and the named bundles
+of arrays it takes, with their constructors.
+
+The kernel and the output modules both read this module; nothing here is compiled. The
+bundles are namedtuples, which numba passes to compiled functions like tuples with names.
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+# settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags
+DT_MIN, DT_MAX, MAX_PEN, ZERO_VELOCITY, PIVOT_MIN, PIVOT_MAX, LEXICO, LEXICO_LOW, LEXICO_HIGH = range(9)
+GO_BACK, SAMPLE_EVERY, SAMPLE_AT_COLLISION, SAMPLE_EACH_STEP, MAX_PIVOTS, SETTINGS = range(9, 15)
+
+# clock array: time and step (s), counters, lost and drive work (J), penetrations (m)
+T, DT, NEXT_SAMPLE, STEPS, IMPACTS, REJECTED, LOST, DRIVE_WORK, MAX_PENETRATION = range(9)
+LCP_FAILURES, OVER_PENETRATIONS, LAST_PENETRATION, CLOCK = range(9, 13)
+
+# statuses of advance
+REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE = range(5)
+
+# event codes (events array rows: time, code, value, value)
+EVENT_LCP_RAY, EVENT_LCP_MAX_PIVOTS, EVENT_LCP_FAILURE, EVENT_OVER_PENETRATION, EVENT_BAD_LAW, EVENT_SINGULAR_MASS = range(6)
+
+# columns of per-point accumulators: impulses (N s), lost work (J), contact angle (rad)
+IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, POINT_COLUMNS = range(7)
+
+# float columns of the per-contact records kept for going back (integer columns: vertex,
+# edge start and edge end points; the closing point of a shape is never used)
+R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = range(8)
+
+ModelArrays = namedtuple(
+    "ModelArrays",
+    "binding binding_index start_pose carrier offset points point_start skin factor radius "
+    "pair_bodies pair_law pair_resisting pair_temperature watch_start watch_points p",
+)
+"""The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
+
+Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin")
+"""Body kinematics at one state: world points (m), bounding boxes, poses, velocities, the
+Jacobians B and their derivative terms, dependent coordinates, detection margins (m)."""
+
+Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work")
+"""Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
+edge parameter xi, gap (m), unit normal out of the edge body, contact point (m); work:
+detection scratch."""
+
+Rows = namedtuple("Rows", "WN WT what_n what_t wbar_n wbar_t gd_n gd_t laws law_out")
+"""Contact rows: W_N, W_T, the velocity and acceleration terms, relative velocities (m/s) and
+the law of each contact (mu, eN, eT, nu); law_out: scratch for one law evaluation."""
+
+Dynamics = namedtuple("Dynamics", "M L hv minv_h YN YT")
+"""Mass matrix, its Cholesky factor, h, M^-1 h and M^-1 W_N, M^-1 W_T of the contacts."""
+
+Problem = namedtuple("Problem", "column hrow active stick sign A_flat bvec z w fwork iwork")
+"""An LCP being set up and solved: contact set (active, stick, sign), matrix, vectors, scratch."""
+
+Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t compression_loss a1 a2 q_star u_star")
+"""Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
+phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
+
+Rollback = namedtuple("Rollback", "q u clock records_int records_float record_count last_sample")
+"""The starts of the last two steps (slot 1: the last, 0: the one before) and their contact
+records, for going back; the time of the last history sample (s)."""
+
+Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
+"""All scratch arrays of the stepper."""
+
+History = namedtuple("History", "time q u a energy lost drive watch count")
+"""History samples: time (s), q, u, q'', energy, lost and drive work (J), watched points, count."""
+
+Events = namedtuple("Events", "data count")
+"""Event rows (time, code, value, value) and their count."""
+
+
+def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, fwork, iwork) -> Workspace:
+    """Scratch arrays for n coordinates, m dependent coordinates, nb bodies, ``points`` shape
+    points, ``pairs`` contact pairs and up to ``capacity`` simultaneous contacts (LCPs of size
+    up to 3 * capacity, with the LCP solver's scratch fwork, iwork)."""
+    c, size = capacity, 3 * capacity
+    f = np.zeros
+    bodies = Bodies(
+        f((points, 2)), f((nb, 4)), f((nb, 3)), f((nb, 3)), f((nb, 3, n)), f((nb, 3)), f((nb, 3)),
+        f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs),
+    )
+    i = np.int64
+    contacts = Contacts(
+        f(c, i), f(c, i), f(c, i), f(c, i), f(c, i), f(c), f(c), f((c, 2)), f((c, 2)), f(3 * points + 2050, i),
+    )
+    rows = Rows(f((c, n)), f((c, n)), f(c), f(c), f(c), f(c), f(c), f(c), f((c, 4)), f(4))
+    dynamics = Dynamics(f((n, n)), f((n, n)), f(n), f(n), f((c, n)), f((c, n)))
+    problem = Problem(
+        f((c, n)), f(c, i), f(c, i), f(c, np.bool_), f(c), f(size * size), f(size), f(size), f(size), fwork, iwork,
+    )
+    forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
+    rollback = Rollback(
+        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
+        np.full(2, -1, dtype=i), np.full(1, -np.inf),
+    )
+    return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)
+
+
+def history_buffers(n: int, watches: int, length: int) -> History:
+    """History arrays for ``length`` samples of n coordinates and ``watches`` watched points."""
+    f = np.zeros
+    return History(f(length), f((length, n)), f((length, n)), f((length, n)), f(length), f(length), f(length),
+                   f((length, watches, POINT_COLUMNS)), np.zeros(1, dtype=np.int64))

@@ -1,0 +1,153 @@
+"""Per-point accumulators of a step's contacts, and going back to the start of a step.
+
+Contributions of a step (impulses, lost work) go to the shape points at once and are also
+kept as records, so that going back (``TryToSolveByGoingBack``, or a step rejected for
+penetration) can take them out again. Slot 1 holds the last step, slot 0 the one before.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mbds.kernel.jit import jit
+from mbds.kernel.layout import (
+    ANGLE,
+    IMP_N,
+    IMP_T,
+    IMP_X,
+    IMP_Y,
+    IMPACTS,
+    LCP_FAILURES,
+    MAX_PENETRATION,
+    OVER_PENETRATIONS,
+    R_ANGLE,
+    R_IMP_N,
+    R_IMP_T,
+    R_IMP_X,
+    R_IMP_Y,
+    R_LOSS,
+    R_XI,
+    REJECTED,
+    STEPS,
+    WORK,
+)
+
+
+@jit(inline="always")
+def record(contacts, i, imp_n, imp_t, loss, point_start, point_loss, point_interval, back):
+    """Add contact i's impulses (N s) and lost work (J) of this step to its points, and keep
+    the record so that going back can take it out again.
+
+    The vertex point gets all of it; the edge's two points share it as (1 - xi, xi), with the
+    impulse reversed (the reaction). Impulses are normal-tangential (n out of the edge body,
+    t = (-n_y, n_x)) and x-y, as acting on the watched point's body.
+    """
+    vertex = contacts.vertex[i]
+    edge = contacts.edge[i]
+    edge_end = _edge_end(edge, contacts.eb[i], point_start)
+    xi = contacts.xi[i]
+    nx = contacts.normal[i, 0]
+    ny = contacts.normal[i, 1]
+    imp_x = imp_n * nx - imp_t * ny
+    imp_y = imp_n * ny + imp_t * nx
+    angle = np.arctan2(ny, nx)
+    _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, 1.0, point_loss, point_interval)
+    records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
+    k = max(record_count[1], 0)
+    if k < records_int.shape[1]:
+        records_int[1, k, 0] = vertex
+        records_int[1, k, 1] = edge
+        records_int[1, k, 2] = edge_end
+        records_float[1, k, R_XI] = xi
+        records_float[1, k, R_IMP_N] = imp_n
+        records_float[1, k, R_IMP_T] = imp_t
+        records_float[1, k, R_IMP_X] = imp_x
+        records_float[1, k, R_IMP_Y] = imp_y
+        records_float[1, k, R_LOSS] = loss
+        records_float[1, k, R_ANGLE] = angle
+        record_count[1] = k + 1
+    else:  # no room to keep it: this step becomes final
+        record_count[1] = -1
+        record_count[0] = -1
+
+
+@jit(inline="always")
+def _edge_end(edge, body, point_start):
+    """The point an edge ends at: the next point, or the body's first for its closing edge."""
+    end = edge + 1
+    return point_start[body] if end == point_start[body + 1] - 1 else end
+
+
+@jit(inline="always")
+def _take_out(records_int, records_float, slot, k, point_loss, point_interval):
+    """Take record k of ``slot`` out of the per-point accumulators."""
+    r = records_float
+    _add_contact(records_int[slot, k, 0], records_int[slot, k, 1], records_int[slot, k, 2], r[slot, k, R_XI],
+                 r[slot, k, R_IMP_N], r[slot, k, R_IMP_T], r[slot, k, R_IMP_X], r[slot, k, R_IMP_Y],
+                 r[slot, k, R_LOSS], r[slot, k, R_ANGLE], -1.0, point_loss, point_interval)
+
+
+@jit(inline="always")
+def _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, scale, point_loss, point_interval):
+    """Add (scale 1) or take out (scale -1) a contact's share at its vertex and edge points."""
+    _add_point(vertex, scale, 1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+    _add_point(edge, (1.0 - xi) * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+    _add_point(edge_end, xi * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+
+
+@jit(inline="always")
+def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval):
+    point_loss[point] += share * loss
+    point_interval[point, IMP_N] += share * imp_n
+    point_interval[point, IMP_T] += share * direction * imp_t
+    point_interval[point, IMP_X] += share * direction * imp_x
+    point_interval[point, IMP_Y] += share * direction * imp_y
+    point_interval[point, WORK] += share * loss
+    if share > 0.0:
+        point_interval[point, ANGLE] = angle if direction > 0.0 else angle + np.pi
+
+
+@jit
+def begin_step(q, u, clock, back):
+    """Keep the start of this step (slot 1) and of the previous one (slot 0) for going back."""
+    records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
+    if record_count[1] >= 0:
+        for k in range(record_count[1]):
+            for j in range(records_int.shape[2]):
+                records_int[0, k, j] = records_int[1, k, j]
+            for j in range(records_float.shape[2]):
+                records_float[0, k, j] = records_float[1, k, j]
+        for k in range(q.shape[0]):
+            back.q[0, k] = back.q[1, k]
+            back.u[0, k] = back.u[1, k]
+        for k in range(clock.shape[0]):
+            back.clock[0, k] = back.clock[1, k]
+    record_count[0] = record_count[1]
+    for k in range(q.shape[0]):
+        back.q[1, k] = q[k]
+        back.u[1, k] = u[k]
+    for k in range(clock.shape[0]):
+        back.clock[1, k] = clock[k]
+    record_count[1] = 0
+
+
+@jit
+def go_back(slot, q, u, clock, point_loss, point_interval, back):
+    """Return to the start of the step kept in ``slot`` (1: the last step, 0: the one before),
+    taking the records of the steps undone out of the accumulators; counters keep counting."""
+    record_count = back.record_count
+    for s in range(1, slot - 1, -1):
+        for k in range(max(record_count[s], 0)):
+            _take_out(back.records_int, back.records_float, s, k, point_loss, point_interval)
+    keep = np.empty(6)
+    for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
+        keep[j] = clock[c]
+    for k in range(q.shape[0]):
+        q[k] = back.q[slot, k]
+        u[k] = back.u[slot, k]
+    for k in range(clock.shape[0]):
+        clock[k] = back.clock[slot, k]
+    for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
+        clock[c] = keep[j]
+    record_count[0] = -1
+    record_count[1] = -1
