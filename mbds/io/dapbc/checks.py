@@ -31,8 +31,9 @@ _LISTS = {"iPindex": "points", "jPindex": "points", "iUindex": "uvectors", "jUin
 _NOUN = {"points": "point", "uvectors": "unit vector", "bodies": "body", "functs": "function"}
 
 
-def _fail(element: Element, name: str | None, message: str):
-    pos = element.where(name)
+def _fail(element: Element, name: str, message: str):
+    """ModelError at the line that set field ``name`` (else the element's type, else its making)."""
+    pos = element.where(name if name in element.field_sources else "type")
     return ModelError(message, pos.file if pos else None, pos.line if pos else None)
 
 

@@ -9,107 +9,32 @@ precedence.  Anything else raises ModelError at its line."""
 
 from __future__ import annotations
 
+from collections import namedtuple
 from dataclasses import dataclass, field
 
 from mbds.errors import ModelError
 from mbds.io.dapbc.lexer import Token, tokenize
 
 
-# ---- expressions ---------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Num:
-    value: float
-    line: int
+# Expressions (every node carries its 1-based line).  Apply is ``base(args)``: a call or an
+# index, told apart when evaluated.  Matrix rows are tuples of expressions.
+Num = namedtuple("Num", "value line")
+Text = namedtuple("Text", "value line")
+Name = namedtuple("Name", "id line")
+FieldRef = namedtuple("FieldRef", "base name line")
+Apply = namedtuple("Apply", "base args line")
+Unary = namedtuple("Unary", "op operand line")
+Binary = namedtuple("Binary", "op left right line")
+Transpose = namedtuple("Transpose", "operand line")
+Matrix = namedtuple("Matrix", "rows line")
 
-
-@dataclass(frozen=True)
-class Text:
-    value: str
-    line: int
-
-
-@dataclass(frozen=True)
-class Name:
-    id: str
-    line: int
-
-
-@dataclass(frozen=True)
-class FieldRef:
-    base: object
-    name: str
-    line: int
-
-
-@dataclass(frozen=True)
-class Apply:
-    """``base(args)``: a function call or an index, told apart when evaluated."""
-
-    base: object
-    args: tuple
-    line: int
-
-
-@dataclass(frozen=True)
-class Unary:
-    op: str
-    operand: object
-    line: int
-
-
-@dataclass(frozen=True)
-class Binary:
-    op: str
-    left: object
-    right: object
-    line: int
-
-
-@dataclass(frozen=True)
-class Transpose:
-    operand: object
-    line: int
-
-
-@dataclass(frozen=True)
-class Matrix:
-    rows: tuple  # tuple of tuples of expressions
-    line: int
-
-
-# ---- statements ----------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Assign:
-    target: object  # Name, FieldRef or Apply
-    value: object
-    line: int
-
-
-@dataclass(frozen=True)
-class ExprStmt:
-    expr: object
-    line: int
-
-
-@dataclass(frozen=True)
-class Global:
-    names: tuple
-    line: int
-
-
-@dataclass(frozen=True)
-class If:
-    clauses: tuple  # ((condition, body), ...): the if and elseif branches
-    orelse: tuple  # body of else (empty when none)
-    line: int
-
-
-@dataclass(frozen=True)
-class FunctionHeader:
-    name: str
-    outputs: tuple
-    params: tuple
-    line: int
+# Statements.  An If holds ((condition, body), ...) for its if and elseif branches and the
+# body of its else (empty when none); an Assign's target is a Name, FieldRef or Apply.
+Assign = namedtuple("Assign", "target value line")
+ExprStmt = namedtuple("ExprStmt", "expr line")
+Global = namedtuple("Global", "names line")
+If = namedtuple("If", "clauses orelse line")
+FunctionHeader = namedtuple("FunctionHeader", "name outputs params line")
 
 
 @dataclass
@@ -172,9 +97,12 @@ class Parser:
             header = self.function_header()
         body = self.block(until=("end", "function") if header else ("function",))
         if header is not None and self.at("end"):
-            self.advance()
+            end_line = self.advance().line
             self.end_of_statement()
             self.skip_separators()
+            if self.tok.kind != "eof" and not self.at("function"):
+                raise self.error("this 'end' closes the function but statements follow it "
+                                 "(an 'end' without 'if'?)", end_line)
         if self.at("function"):
             raise self.error("a second function in the file is outside the subset")
         if self.at("end"):
@@ -187,29 +115,28 @@ class Parser:
         line = self.advance().line
         outputs: list[str] = []
         if self.at("["):
-            self.advance()
-            while not self.at("]"):
-                outputs.append(self.name_token("an output name").text)
-                if self.at(","):
-                    self.advance()
-            self.advance()
+            outputs = self.name_list("]", "an output name")
             self.expect("=", "after the function's outputs")
         name = self.name_token("a function name").text
         if self.at("="):
             self.advance()
             outputs, name = [name], self.name_token("a function name").text
-        params: list[str] = []
-        if self.at("("):
-            self.advance()
-            while not self.at(")"):
-                params.append(self.name_token("a parameter name").text)
-                if self.at(","):
-                    self.advance()
-                elif not self.at(")"):
-                    raise self.error(f"expected ',' or ')' in the parameter list, found {describe(self.tok)}")
-            self.advance()
+        params = self.name_list(")", "a parameter name") if self.at("(") else []
         self.end_of_statement()
         return FunctionHeader(name, tuple(outputs), tuple(params), line)
+
+    def name_list(self, close: str, what: str) -> list[str]:
+        """Names separated by commas, after the opening bracket, up to ``close``."""
+        self.advance()
+        names = []
+        while not self.at(close):
+            names.append(self.name_token(what).text)
+            if self.at(","):
+                self.advance()
+            elif not self.at(close):
+                raise self.error(f"expected ',' or '{close}', found {describe(self.tok)}")
+        self.advance()
+        return names
 
     def name_token(self, what: str) -> Token:
         if self.tok.kind != "name":
@@ -280,7 +207,7 @@ class Parser:
         orelse: tuple = ()
         while True:
             if self.tok.kind == "eof":
-                raise self.error(f"'if' at line {line} is never closed by 'end'")
+                raise self.error("this 'if' is never closed by 'end'", line)
             if self.at("elseif"):
                 self.advance()
                 cond = self.expression()
@@ -290,7 +217,7 @@ class Parser:
                 orelse = tuple(self.block(until=("elseif", "else", "end")))
                 if not self.at("end"):
                     if self.tok.kind == "eof":
-                        raise self.error(f"'if' at line {line} is never closed by 'end'")
+                        raise self.error("this 'if' is never closed by 'end'", line)
                     raise self.error(f"'{self.tok.text}' after 'else'")
             else:
                 self.advance()  # end
@@ -416,6 +343,8 @@ class Parser:
             if self.at("]"):
                 self.advance()
                 break
+            if self.at("="):
+                raise self.error(f"'[' at line {line} is never closed by ']'", line)
             if t.kind == "nl" or self.at(";"):
                 self.advance()
                 if rows[-1]:

@@ -66,9 +66,9 @@ def read_dapbc_folder(path: str | Path) -> DapbcModel:
             raise ModelError(f"the file never sets '{array}' (write '{array} = [...];', "
                              f"or '{array} = [];' when there are none)", file)
         shared[array] = _element_list(shared[array], array, record_type, set_at[array])
-    model.bodies = shared.get("Bodies", [])
-    if not model.bodies:
-        raise ModelError("the model has no bodies", model.files["inBodies"])
+        if role == "inBodies" and not shared[array]:
+            raise ModelError("the model has no bodies", set_at[array].file, set_at[array].line)
+    model.bodies = shared["Bodies"]
     model.points = shared.get("Points", [])
     model.uvectors = shared.get("Uvectors", [])
     model.forces = shared.get("Forces", [])
