@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from mbds.errors import ModelError
 from mbds.io.dapbc import read_dapbc_folder
 from tests.dapbc_io.folders import SP, write_folder
+from tests.dapbc_io.mutations import mutate
 
 PIECES = ["[", "]", "(", ")", ";", ",", "'", "...", "%", "=", "==", ".", "end", "if", "else",
           "function", "global", "include_global", "Bodies", "Points(2)", "B1", ".r", ".type",
@@ -22,22 +23,7 @@ PIECES = ["[", "]", "(", ")", ";", ",", "'", "...", "%", "=", "==", ".", "end", 
 @st.composite
 def mutated_model(draw):
     name = draw(st.sampled_from(sorted(SP)))
-    text = SP[name]
-    for _ in range(draw(st.integers(1, 3))):
-        kind = draw(st.sampled_from(["insert", "delete", "replace", "swap"]))
-        i = draw(st.integers(0, len(text)))
-        if kind == "insert":
-            text = text[:i] + draw(st.sampled_from(PIECES) | st.text(max_size=3)) + text[i:]
-        elif kind == "delete":
-            text = text[:i] + text[i + draw(st.integers(1, 8)):]
-        elif kind == "replace":
-            text = text[:i] + draw(st.sampled_from(PIECES)) + text[i + draw(st.integers(1, 4)):]
-        else:
-            lines = text.split("\n")
-            a, b = draw(st.integers(0, len(lines) - 1)), draw(st.integers(0, len(lines) - 1))
-            lines[a], lines[b] = lines[b], lines[a]
-            text = "\n".join(lines)
-    return name, text
+    return name, mutate(draw, SP[name], PIECES, swap_lines=True)
 
 
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])

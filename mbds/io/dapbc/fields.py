@@ -28,12 +28,16 @@ def field_kind(record: Element, name: str) -> str:
     return "index" if isinstance(default, int) else "num"
 
 
+def did_you_mean(name: str, names, listing: str = "fields") -> str:
+    """``; did you mean 'x'?`` with the closest of ``names`` (case first), else the list of them."""
+    names = list(names)
+    close = [n for n in names if n.lower() == name.lower()] or difflib.get_close_matches(name, names, n=1)
+    return f"; did you mean '{close[0]}'?" if close else f" ({listing}: {', '.join(names)})"
+
+
 def unknown_field(record: Element, name: str) -> str:
     """The message for a field the record does not have (with the closest known name)."""
-    names = record.field_names()
-    close = difflib.get_close_matches(name, names, n=1)
-    hint = f"; did you mean '{close[0]}'?" if close else f" (fields: {', '.join(names)})"
-    return f"{type(record).__name__} has no field '{name}'{hint}"
+    return f"{type(record).__name__} has no field '{name}'{did_you_mean(name, record.field_names())}"
 
 
 def set_field(record: Element, name: str, value, pos: SourcePos, component: int | None = None) -> None:
