@@ -197,3 +197,29 @@ Points_anim = [C];
 
 def test_a_folder_without_in_bodies_is_not_dapbc(tmp_path):
     assert not is_dapbc_folder(tmp_path)
+
+
+def test_octave_spellings_and_hash_comments(tmp_path):
+    bodies = read_bodies(tmp_path, """# an Octave comment
+B1 = Body_struct;
+if 1 != 2
+    B1.m = 3;
+endif
+Bodies = [B1];
+endfunction
+""")
+    assert bodies[0].m == 3.0
+
+
+def test_cli_reports_a_reader_error_with_exit_code_2(tmp_path, capsys):
+    """The project's CLI wrapper turns the reader's ModelError into `error: file:line: ...`, exit 2."""
+    import typer
+
+    from mbds.cli.errors import EXIT_BAD_INPUT, reported_errors
+
+    folder = write_folder(tmp_path, {"inPoints.m": SP["inPoints.m"].replace("P3.Bindex = 2;", "P3.Bindex = 7;")})
+    with pytest.raises(typer.Exit) as info, reported_errors(debug=False):
+        read_dapbc_folder(folder)
+    assert info.value.exit_code == EXIT_BAD_INPUT == 2
+    assert capsys.readouterr().err.strip() == (f"error: {folder / 'inPoints.m'}:13: Point 3: Bindex = 7 names "
+                                               "no body; the model has 2 bodies")

@@ -14,7 +14,7 @@ from mbds.errors import ModelError
 
 KEYWORDS = {"if", "elseif", "else", "end", "function", "global", "for", "while", "switch",
             "case", "otherwise", "break", "continue", "return", "try", "catch", "do", "until",
-            "parfor", "classdef", "endif", "endfunction", "unwind_protect"}
+            "parfor", "classdef", "unwind_protect"}
 OPERATORS = (".*", "./", ".^", ".'", "==", "~=", "!=", "<=", ">=", "&&", "||",
              "+", "-", "*", "/", "\\", "^", "<", ">", "&", "|", "~", "!", "=", "(", ")",
              "[", "]", "{", "}", ";", ",", ".", ":", "'", "@")
@@ -113,6 +113,7 @@ def tokenize(source: str, file: str) -> list[Token]:
         m = _NAME.match(source, i)
         if m:
             word = m.group(0)
+            word = "end" if word in ("endif", "endfunction") else word  # Octave's spellings
             tokens.append(Token("kw" if word in KEYWORDS else "name", word, line, space))
             i = m.end()
             space = False
