@@ -88,9 +88,10 @@ def bad_signature(t, r, p):
     """Not a user force."""
 
 
-def test_user_force_given_as_a_function():
-    from tests.dapbc_io.python_force import spring_to_origin
-    code = from_function(spring_to_origin, n_state=0)
+@pytest.mark.parametrize("name", ["spring_to_origin", "compiled_spring_to_origin"])
+def test_user_force_given_as_a_function(name):
+    from tests.dapbc_io import python_force
+    code = from_function(getattr(python_force, name), n_state=0)
     force = code.load()
     f, n = np.zeros((1, 2)), np.zeros(1)
     force(0.0, np.array([[2.0, -1.0]]), np.zeros(1), np.zeros((1, 2)), np.zeros(1), np.eye(2)[None],
