@@ -122,3 +122,10 @@ def test_not_utf8_is_an_error(tmp_path):
     (folder / "inPoints.m").write_bytes(b"function inPoints\n\xff\xfe")
     with pytest.raises(ModelError, match="inPoints.m: not UTF-8 text"):
         read_dapbc_folder(folder)
+
+
+@pytest.mark.parametrize("index", ["NaN", "Inf", "1e400", "2.5", "'a'", "[1 2]"])
+def test_indices_that_are_not_whole_numbers(tmp_path, index):
+    animate = SP["inAnimate.m"].replace("Bodies(2).shape = 'line';", f"Bodies({index}).shape = 'line';")
+    with pytest.raises(ModelError, match=r"inAnimate.m:7: an index must be a whole number >= 1"):
+        read_dapbc_folder(write_folder(tmp_path, {"inAnimate.m": animate}))

@@ -16,7 +16,7 @@ from tests.dapbc_io.mutations import mutate
 
 PIECES = ["[", "]", "(", ")", ";", ",", "'", "...", "%", "=", "==", ".", "end", "if", "else",
           "function", "global", "include_global", "Bodies", "Points(2)", "B1", ".r", ".type",
-          "Body_struct", "Point_struct", "0", "-1", "1e300", "2.5", "pi", "sin(", "'rev'", "~",
+          "Body_struct", "Point_struct", "0", "-1", "1e300", "1e400", "NaN", "Inf", "2.5", "pi", "sin(", "'rev'", "~",
           "^", "*", "/", "\n", " ", "B1.m = ", ":", "{", "@", "\"", "1/0", "[1 2; 3]", "\t"]
 
 

@@ -103,7 +103,7 @@ def test_user_force_given_as_a_function(name):
 
 PIECES = ["if", "end", "else", "elseif", "(", ")", "[", "]", ";", "'", "Bodies(1)", "Bodies(9)",
           ".f", ".n", ".r", ".A", "Points(1).sP", "Forces(2).k", "Contact(1, 1, 1, k, e, 1)", "=",
-          "==", "<", "&&", "~", "*", "/", "^", "+", "-", "s_rot(", "abs(", "min(", "1", "0", "2.5",
+          "==", "<", "&&", "~", "*", "/", "^", "+", "-", "s_rot(", "abs(", "min(", "1", "0", "2.5", "1e400", "Inf",
           "\n", " ", "...", "%", "x", "fsd", "Friction_A(", "global ", "t", "'a'", ",", ":"]
 
 
@@ -131,3 +131,9 @@ def test_mutated_user_force_compiles_or_gives_a_located_error(text):
             assert error.file == str(file) and error.line is not None and error.line >= 1, str(error)
             return
         compile(code.module_source, "generated", "exec")
+
+
+@pytest.mark.parametrize("index", ["1e400", "2.5", "-1", "1/0"])
+def test_user_force_indices_that_are_not_whole_numbers(index):
+    with pytest.raises(ModelError, match=r"user_force.m:1: the index of Bodies must be a constant whole number"):
+        compile_user_force(f"x = Bodies({index}).p;\n", MODEL, "user_force.m")

@@ -8,7 +8,7 @@ import numpy as np
 
 from mbds.errors import ModelError
 from mbds.io.dapbc.records import Element, Force, Funct, Joint, SourcePos
-from mbds.io.dapbc.values import shape_text
+from mbds.io.dapbc.values import is_whole, shape_text
 
 FORCE_TYPES = ("ptp", "rot-sda", "weight", "flocal", "f", "T", "user")
 JOINT_TYPES = ("rev", "tran", "rev-rev", "rev-tran", "rigid", "disc", "rel-rot", "rel-tran")
@@ -72,7 +72,7 @@ def set_field(record: Element, name: str, value, pos: SourcePos, component: int 
         setattr(record, name, _number(value, label, where))
     elif kind == "index":
         number = _number(value, label, where)
-        if number < 0 or number != int(number):
+        if number < 0 or not is_whole(number):
             raise ModelError(f"{label} must be a whole number >= 0, not {number:g}", *where)
         setattr(record, name, int(number))
     else:

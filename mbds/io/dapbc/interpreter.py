@@ -9,7 +9,7 @@ from mbds.errors import ModelError
 from mbds.io.dapbc import parser as ast
 from mbds.io.dapbc.fields import get_field, set_field
 from mbds.io.dapbc.records import CONSTRUCTORS, Element, SourcePos
-from mbds.io.dapbc.values import CONSTANTS, FUNCTIONS, binary, call, scalar, shape_text, truth
+from mbds.io.dapbc.values import CONSTANTS, FUNCTIONS, binary, call, is_whole, scalar, shape_text, truth
 
 #: The names that DAP_BC's include_global makes shared between the in-files.
 GLOBAL_NAMES = ("Bodies", "Points", "Uvectors", "Forces", "Joints", "Functs", "Points_anim",
@@ -153,7 +153,7 @@ class InFile:
         if len(args) != 1:
             raise ModelError(f"expected one index, got {len(args)}", self.file, line)
         value = self.value(args[0])
-        if not isinstance(value, np.ndarray) or value.shape != (1, 1) or value[0, 0] != int(value[0, 0]) \
+        if not isinstance(value, np.ndarray) or value.shape != (1, 1) or not is_whole(value[0, 0]) \
                 or value[0, 0] < 1:
             raise ModelError(f"an index must be a whole number >= 1, not {shape_text(value)}"
                              + (f" {value[0, 0]:g}" if isinstance(value, np.ndarray) and value.size == 1 else ""),
@@ -243,7 +243,7 @@ class InFile:
             raise ModelError(f"expected one or two indices, got {len(indices)}", *where)
         ints = []
         for index, size in zip(indices, (container.size,) if len(indices) == 1 else container.shape):
-            if not isinstance(index, np.ndarray) or index.shape != (1, 1) or index[0, 0] != int(index[0, 0]):
+            if not isinstance(index, np.ndarray) or index.shape != (1, 1) or not is_whole(index[0, 0]):
                 raise ModelError(f"an index must be a whole number, not {shape_text(index)}", *where)
             k = int(index[0, 0])
             if not 1 <= k <= size:

@@ -35,6 +35,7 @@ from mbds.io.dapbc import parser as ast
 from mbds.io.dapbc.fields import did_you_mean
 from mbds.io.dapbc.reader import read_source
 from mbds.io.dapbc.records import DapbcModel, Force
+from mbds.io.dapbc.values import is_whole
 from mbds.kernel.dapbc_library import CONTACT_STATE_SLOTS
 
 SIGNATURE = ("t", "r", "p", "r_d", "p_d", "A", "rP", "rP_d", "sP", "fields", "state", "f", "n")
@@ -248,7 +249,7 @@ class Compiler:
 
     def constant_index(self, e, what: str, count: int | None, line: int) -> int:
         value = self.constant(e)
-        if value is None or value != int(value) or value < 1:
+        if value is None or not is_whole(value) or value < 1:
             raise self.error(f"{what} must be a constant whole number >= 1", line)
         if count is not None and value > count:
             raise self.error(f"{what} = {int(value)} is out of range (1..{count})", line)
@@ -322,7 +323,7 @@ class Compiler:
             raise self.error("expected one index", line)
         size = _SIZES[shape]
         k = self.constant(args[0])
-        if k is None or k != int(k) or not 1 <= k <= size:
+        if k is None or not is_whole(k) or not 1 <= k <= size:
             raise self.error(f"an index must be a constant whole number 1..{size}", line)
         return int(k) - 1
 

@@ -10,6 +10,11 @@ import numpy as np
 from mbds.errors import ModelError
 
 
+def is_whole(x) -> bool:
+    """True for a finite number with no fraction (an index or a size)."""
+    return math.isfinite(x) and x == int(x)
+
+
 def scalar(x: float) -> np.ndarray:
     """A 1x1 matrix."""
     return np.array([[float(x)]])
@@ -138,7 +143,7 @@ def call(name: str, args: list, where) -> np.ndarray:
         count = f"{least}" if least == most else f"{least} to {most}"
         raise ModelError(f"{name} takes {count} argument(s), got {len(args)}", *where)
     nums = [_numeric(a, name, where) for a in args]
-    if name in ("zeros", "ones") and any(a.size != 1 or a.item() < 0 or a.item() != int(a.item()) for a in nums):
+    if name in ("zeros", "ones") and any(a.size != 1 or a.item() < 0 or not is_whole(a.item()) for a in nums):
         raise ModelError(f"{name} needs whole-number sizes", *where)
     if len(nums) == 2 and not _broadcast_ok(nums[0], nums[1]):
         raise ModelError(f"{name} of {shape_text(nums[0])} and {shape_text(nums[1])}: sizes do not match", *where)
