@@ -16,7 +16,9 @@ The generated function has this fixed signature (all arrays float64, indices 0-b
   changes them as the MATLAB code changes ``Bodies(i).f`` and ``Bodies(i).n``
   (``Bodies(i).f = Bodies(i).f + ...`` adds into them).
 
-MATLAB's 1-based ``Bodies(2)``, ``Points(3)``, ``Forces(2)`` become rows 1, 2, 1.  The subset:
+The caller runs it at the position of the ``user`` element in Forces (the elements before it
+already added into f and n), at every evaluation of the equations of motion.  MATLAB's 1-based
+``Bodies(2)``, ``Points(3)``, ``Forces(2)`` become rows 1, 2, 1.  The subset:
 docs/dapbc-files.md.  A user force may instead be a Python function with the same signature
 (``user_force.py`` in the folder, or :func:`from_function`).
 """
