@@ -55,6 +55,7 @@ CASES = [
     ("x = Bodies(1);", "Bodies(i) needs a field"),
     ("x = Bodies(i).r;", "the index of Bodies must be a constant whole number"),
     ("Bodies = 1;", "'Bodies' cannot be replaced in user_force"),
+    ("x = 1 +\n2;", "expected a value, found the end of the line (continue a statement on the next line with '...')"),
 ]
 
 

@@ -330,7 +330,8 @@ class Parser:
             raise self.error("function handles '@' are outside the subset")
         if self.at("{"):
             raise self.error("cell arrays '{ }' are outside the subset")
-        raise self.error(f"expected a value, found {describe(t)}")
+        hint = " (continue a statement on the next line with '...')" if t.kind == "nl" else ""
+        raise self.error(f"expected a value, found {describe(t)}{hint}")
 
     def matrix_literal(self) -> Matrix:
         line = self.advance().line
