@@ -223,3 +223,24 @@ def test_cli_reports_a_reader_error_with_exit_code_2(tmp_path, capsys):
     assert info.value.exit_code == EXIT_BAD_INPUT == 2
     assert capsys.readouterr().err.strip() == (f"error: {folder / 'inPoints.m'}:13: Point 3: Bindex = 7 names "
                                                "no body; the model has 2 bodies")
+
+
+def test_setting_fields_from_python_values_checks_them_like_the_in_files():
+    """For campaign variations (force.1.k = 40000): same checks, same located errors."""
+    from mbds.errors import ModelError
+    from mbds.io.dapbc.fields import set_field_value
+    from mbds.io.dapbc.records import SourcePos
+
+    force, pos = Force(), SourcePos("job.ini", 7)
+    set_field_value(force, "k", 40000, pos)
+    set_field_value(force, "wgt", [0.0, -2.0], pos)
+    set_field_value(force, "type", "rot-sda", pos)
+    set_field_value(force, "iBindex", 2.0, pos)
+    assert (force.k, list(force.wgt), force.type, force.iBindex) == (40000.0, [0.0, -2.0], "rot-sda", 2)
+    assert force.where("k") == pos
+    for name, value, message in (("k", "stiff", "must be a number, not text"), ("k", [1, 2], "must be a number"),
+                                 ("kk", 1, "did you mean 'k'"), ("iBindex", 0.5, "whole number"),
+                                 ("k", None, "not a finite number"), ("k", {}, "not a number")):
+        with pytest.raises(ModelError, match=message) as info:
+            set_field_value(force, name, value, pos)
+        assert str(info.value).startswith("job.ini:7: ")

@@ -106,3 +106,17 @@ def get_field(record: Element, name: str, where):
     if isinstance(value, np.ndarray):
         return value.reshape(-1, 1).copy() if field_kind(record, name) == "vec2" else value.reshape(1, -1).copy()
     return np.array([[float(value)]])
+
+
+def set_field_value(record: Element, name: str, value, pos: SourcePos) -> None:
+    """Set a field from a plain Python value (a number, a sequence of numbers or text), with the
+    checks of the in-files; for campaign variations such as ``force.1.k = 40000``."""
+    if isinstance(value, str):
+        set_field(record, name, value, pos)
+        return
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ModelError(f"{type(record).__name__} field '{name}': not a number: {value!r}",
+                         pos.file, pos.line) from None
+    set_field(record, name, array.reshape(1, 1) if array.ndim == 0 else array.reshape(-1, 1), pos)
