@@ -21,6 +21,7 @@ from __future__ import annotations
 from typing import Callable, NamedTuple
 
 import numpy as np
+from scipy.integrate import solve_ivp
 
 GRAVITY = 9.81  # m/s^2, DAP_BC's default 'gravity'
 #: the simulated interval per model (s): the benchmark intervals of issue 11 for SP, MP_A, Rod
@@ -357,20 +358,24 @@ def contact_lankarani_nikravesh(depth, rate, rate0, k, e) -> float:
     return k * depth ** 1.5 * (1.0 + 0.75 * (1.0 - e * e) * ratio)
 
 
+ROD_ENDS = ([0.0, -1.0], [0.0, 1.0])  # body-fixed points of the rod's ends (m)
+
+
 def _rod() -> Model:
     mass, inertia = np.array([1.0]), np.array([0.01])
 
     def forces(s, t, h, memory):
         """Both rod ends against the ground y = 0.  As DAP_BC's Contact does, the penetration
-        rate at the first evaluation in contact is kept (in ``memory``) until the end leaves."""
+        rate at the first evaluation in contact is kept (in ``memory``) until the end leaves;
+        with ``memory["located"]`` set, the rates come from located impacts (Reference.solve)."""
         v = weight(s, h, mass)
-        for end, local in enumerate(([0.0, -1.0], [0.0, 1.0])):
+        for end, local in enumerate(ROD_ENDS):
             p = s.point(1, local)
-            depth = -p.val[1]
+            depth, rate = -p.val[1], -p.rate[1]
             if depth > 0:
-                memory.setdefault(end, -p.rate[1])
-                apply(s, h, 1, [0.0, contact_lankarani_nikravesh(depth, -p.rate[1], memory[end], 1e11, 0.95)], local)
-            else:
+                rate0 = memory.get(end, rate) if memory.get("located") else memory.setdefault(end, rate)
+                apply(s, h, 1, [0.0, contact_lankarani_nikravesh(depth, rate, rate0, 1e11, 0.95)], local)
+            elif not memory.get("located"):
                 memory.pop(end, None)
         return v
 
@@ -394,6 +399,7 @@ class Reference:
         self.model = MODELS[name]()
         self.m = self.model.diag_mass
         self.memory: dict = {}  # contact states (Rod)
+        self.impacts: list = []  # (end, time in s, d'0 in m/s) of the impacts located by solve
 
     def rows(self, q, qd, t):
         """(Phi, D, nu, gamma) of all constraints at (q, q', t)."""
@@ -434,6 +440,38 @@ class Reference:
         kinetic = 0.5 * self.m @ y[n:] ** 2
         potential = self.applied(y[:n], y[n:], 0.0)[1]
         return np.array([kinetic, potential, kinetic + potential])
+
+    def solve(self, y0, t_eval, rtol=1e-12, atol=1e-12):
+        """DOP853 from y0 with output at t_eval; (len(t_eval), 2n) states.  For Rod, each end's
+        impact is located as an event and the penetration rate at that instant is the d'0 of
+        Eq. 11.42 for the whole contact (the exact value of what DAP_BC's Contact samples)."""
+        t_eval = np.asarray(t_eval, float)
+        if self.name != "Rod":
+            sol = solve_ivp(self.rhs, (t_eval[0], t_eval[-1]), y0, method="DOP853", rtol=rtol,
+                            atol=atol, t_eval=t_eval)
+            return sol.y.T
+        self.memory, self.impacts = {"located": True}, []
+        out, t0, y = [], t_eval[0], np.asarray(y0, float)
+        while True:
+            events = [self._end_height(k) for k in range(len(ROD_ENDS))]
+            for k, event in enumerate(events):  # the next impact, or the end leaving the ground
+                event.terminal, event.direction = True, (1.0 if k in self.memory else -1.0)
+            pending = t_eval[(t_eval > t0) if out else (t_eval >= t0)]
+            sol = solve_ivp(self.rhs, (t0, t_eval[-1]), y, method="DOP853", rtol=rtol, atol=atol,
+                            t_eval=pending, events=events)
+            out.append(np.asarray(sol.y).reshape(y.size, -1).T)
+            if sol.status != 1:
+                return np.vstack(out)
+            end = next(k for k, te in enumerate(sol.t_events) if te.size)
+            t0, y = sol.t_events[end][0], sol.y_events[end][0]
+            if end in self.memory:
+                del self.memory[end]
+            else:
+                self.memory[end] = -State(y[:3], y[3:]).point(1, ROD_ENDS[end]).rate[1]
+                self.impacts.append((end, t0, self.memory[end]))
+
+    def _end_height(self, end: int):
+        return lambda t, y: State(y[:3], y[3:]).point(1, ROD_ENDS[end]).val[1]
 
     def corrected(self, q, qd, t=0.0, tol=1e-13):
         """Initial conditions made consistent: minimum-norm Newton steps on Phi(q) = 0, then the
