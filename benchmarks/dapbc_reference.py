@@ -24,8 +24,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 GRAVITY = 9.81  # m/s^2, DAP_BC's default 'gravity'
-#: the simulated interval per model (s): the benchmark intervals of issue 11 for SP, MP_A, Rod
-#: and CB, the book's final times (campaigns/dap_bc/*/README.md) for the others
+#: the simulated interval per model (s): SP's 4 s of the manual (Sec. B.1.1), the benchmark
+#: intervals for MP_A, Rod and CB (docs/performance.md), and for the others intervals chosen
+#: here that cover the main event of each model (campaigns/dap_bc/README.md)
 T_FINAL = {"SP": 4.0, "AA": 2.0, "MP_A": 1.0, "MP_B": 1.0, "MP_C": 1.0, "Cart_A": 2.0,
            "Cart_B": 4.0, "Cart_C": 4.0, "Cart_D": 4.0, "CB": 10.0, "Rod": 0.2}
 
