@@ -90,24 +90,23 @@ class State:
 
     def point(self, b: int, local) -> Vec:
         """Point with body-fixed coordinates ``local`` on body b (b = 0: the ground)."""
-        if b == 0:
-            return self.constant(local)
-        r, phi, rd, phid = self.body(b)
-        s = _rot(phi) @ np.asarray(local, float)
-        jac = np.zeros((2, self.n))
-        jac[:, 3 * b - 3:3 * b - 1] = np.eye(2)
-        jac[:, 3 * b - 1] = _rot90(s)
-        return Vec(r + s, jac, jac @ self.qd, -s * phid ** 2)
+        return self._body_fixed(b, local, True)
 
     def unit(self, b: int, local) -> Vec:
         """Unit vector with body-fixed components ``local`` on body b (b = 0: the ground)."""
+        return self._body_fixed(b, local, False)
+
+    def _body_fixed(self, b: int, local, translates: bool) -> Vec:
+        """A body-fixed vector A_b local, plus r_b when it is a point (``translates``)."""
         if b == 0:
             return self.constant(local)
-        _, phi, _, phid = self.body(b)
-        u = _rot(phi) @ np.asarray(local, float)
+        r, phi, _, phid = self.body(b)
+        s = _rot(phi) @ np.asarray(local, float)
         jac = np.zeros((2, self.n))
-        jac[:, 3 * b - 1] = _rot90(u)
-        return Vec(u, jac, jac @ self.qd, -u * phid ** 2)
+        jac[:, 3 * b - 1] = _rot90(s)
+        if translates:
+            jac[:, 3 * b - 3:3 * b - 1] = np.eye(2)
+        return Vec(r + s if translates else s, jac, jac @ self.qd, -s * phid ** 2)
 
     def angle(self, b: int) -> Row:
         """phi_b as a constraint row (0 for the ground)."""
