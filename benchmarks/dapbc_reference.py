@@ -217,7 +217,8 @@ def ptp(s: State, h: np.ndarray, pi, pj, k, L0, dc=0.0, f_a=0.0) -> float:
 class Model(NamedTuple):
     """A reference model: masses (kg) and moments of inertia (kg m^2) per body, initial
     coordinates and velocities, constraint rows of (state, t), and the applied forces: a
-    function of (state, t, h, memory) that adds them to h and returns the potential energy."""
+    function of (state, t, h, memory) that adds the standard elements' forces to h and returns
+    their potential energy, and the user force."""
 
     mass: np.ndarray
     inertia: np.ndarray
@@ -225,6 +226,7 @@ class Model(NamedTuple):
     qd0: np.ndarray
     constraints: Callable
     forces: Callable
+    user: Callable | None = None  # what the model's user_force.m adds, of (state, t, h, memory)
 
     @property
     def diag_mass(self) -> np.ndarray:
@@ -260,13 +262,14 @@ def _aa() -> Model:
                 + rev(s, (2, [-0.10, 0.12]), (3, [0.13, 0])) + rev(s, (3, [-0.13, 0]), (0, [0.32, 0.40])))
 
     def forces(s, t, h, memory):
-        v = ptp(s, h, (1, [0, 0]), (0, [0.38, 0.43]), 90000.0, 0.23, 1100.0) + weight(s, h, mass)
+        return ptp(s, h, (1, [0, 0]), (0, [0.38, 0.43]), 90000.0, 0.23, 1100.0) + weight(s, h, mass)
+
+    def user(s, t, h, memory):
         r, _, rd, _ = s.body(2)
         tire(h, 2, r[1], rd[1], 50000.0, 0.35, 1000.0)
-        return v
 
     q0 = np.array([0.4398, 0.2512, -0.0367, 0.6817, 0.3498, 0.0783, 0.4463, 0.4308, 6.5222])
-    return Model(mass, inertia, q0, np.zeros(9), cons, forces)
+    return Model(mass, inertia, q0, np.zeros(9), cons, forces, user)
 
 
 def tire(h, b, y, yd, k, L0, dc, s=None, contact_local=None) -> None:
@@ -300,13 +303,14 @@ def _mp(variant: str) -> Model:
         return rev_rev(s, (1, w["A"]), (0, g["Q"]), 0.45) + rev_tran(s, (1, w["B"]), (0, g["O"]), (1, [0.47, -0.88]))
 
     def forces(s, t, h, memory):
-        v = ptp(s, h, (1, w["B"]), (0, g["O"]), 20000.0, 0.34, 1100.0) + weight(s, h, mass)
+        return ptp(s, h, (1, w["B"]), (0, g["O"]), 20000.0, 0.34, 1100.0) + weight(s, h, mass)
+
+    def user(s, t, h, memory):
         r, _, rd, _ = s.body(1)
         tire(h, 1, r[1], rd[1], 100000.0, 0.30, 1000.0, s, w["C"])
-        return v
 
     q0 = np.array([0.5840, 0.3586, 6.0819, 0.3450, 0.2900, 0.0, 0.4528, 0.6862, 5.0019])[:3 * nb]
-    return Model(mass, inertia, q0, np.zeros(3 * nb), cons, forces)
+    return Model(mass, inertia, q0, np.zeros(3 * nb), cons, forces, user)
 
 
 def _cart(variant: str) -> Model:
@@ -319,17 +323,19 @@ def _cart(variant: str) -> Model:
         return rows + (rel_rot(s, 2, 1, driver, t) if driver else [])
 
     def forces(s, t, h, memory):
-        v = weight(s, h, mass)
-        if driver is None:  # Cart_C, Cart_D: motor torque T = T_max (1 - |w|/w_max), capped at T_max
-            torque = min(20.0 * (1.0 - abs(s.qd[5]) / (4 * np.pi)), 20.0)
-            h[5] -= torque
-            h[2] += torque
-        if variant == "D":  # aerodynamic drag 10 x'^2 on the cart
+        return weight(s, h, mass)
+
+    def user(s, t, h, memory):
+        """Cart_C, Cart_D: motor torque T = T_max (1 - |w|/w_max), capped at T_max, on the rear
+        wheel (-T) and the cart (+T); Cart_D: aerodynamic drag 10 x'^2 on the cart."""
+        torque = min(20.0 * (1.0 - abs(s.qd[5]) / (4 * np.pi)), 20.0)
+        h[5] -= torque
+        h[2] += torque
+        if variant == "D":
             h[0] -= 10.0 * s.qd[0] ** 2
-        return v
 
     q0 = np.array([0.5, 0.2, 0.0, 0.2, 0.1, 0.0, 0.8, 0.1, 0.0])
-    return Model(mass, inertia, q0, np.zeros(9), cons, forces)
+    return Model(mass, inertia, q0, np.zeros(9), cons, forces, None if driver else user)
 
 
 def friction_anderson(mu_s, mu_d, v_s, p, k_t, v) -> float:
@@ -344,12 +350,13 @@ def _cb() -> Model:
         return tran(s, (1, [0, 0]), (0, [0, 0.2]), (1, [1, 0]), (0, [1, 0]))
 
     def forces(s, t, h, memory):
-        v = ptp(s, h, (1, [0, 0]), (0, [0, 0.2]), 10.0, 0.8) + weight(s, h, mass)
+        return ptp(s, h, (1, [0, 0]), (0, [0, 0.2]), 10.0, 0.8) + weight(s, h, mass)
+
+    def user(s, t, h, memory):
         slip = 0.1 - s.qd[0]  # belt speed 0.1 m/s
         h[0] += 9.81 * friction_anderson(0.2, 0.15, 0.001, 2.0, 10000.0, slip)
-        return v
 
-    return Model(mass, inertia, np.array([1.0, 0.2, 0.0]), np.zeros(3), cons, forces)
+    return Model(mass, inertia, np.array([1.0, 0.2, 0.0]), np.zeros(3), cons, forces, user)
 
 
 def contact_lankarani_nikravesh(depth, rate, rate0, k, e) -> float:
@@ -365,10 +372,12 @@ def _rod() -> Model:
     mass, inertia = np.array([1.0]), np.array([0.01])
 
     def forces(s, t, h, memory):
+        return weight(s, h, mass)
+
+    def user(s, t, h, memory):
         """Both rod ends against the ground y = 0.  As DAP_BC's Contact does, the penetration
         rate at the first evaluation in contact is kept (in ``memory``) until the end leaves;
         with ``memory["located"]`` set, the rates come from located impacts (Reference.solve)."""
-        v = weight(s, h, mass)
         for end, local in enumerate(ROD_ENDS):
             p = s.point(1, local)
             depth, rate = -p.val[1], -p.rate[1]
@@ -377,10 +386,9 @@ def _rod() -> Model:
                 apply(s, h, 1, [0.0, contact_lankarani_nikravesh(depth, rate, rate0, 1e11, 0.95)], local)
             elif not memory.get("located"):
                 memory.pop(end, None)
-        return v
 
     return Model(mass, inertia, np.array([0.0, 1.0, np.pi / 4]), np.array([0.0, -6.0, 0.0]),
-                 lambda s, t: [], forces)
+                 lambda s, t: [], forces, user)
 
 
 MODELS: dict[str, Callable[[], Model]] = {
@@ -413,7 +421,10 @@ class Reference:
     def applied(self, q, qd, t):
         """(h, potential energy) at (q, q', t)."""
         h = np.zeros(q.size)
-        potential = self.model.forces(State(q, qd), t, h, self.memory)
+        state = State(q, qd)
+        potential = self.model.forces(state, t, h, self.memory)
+        if self.model.user is not None:
+            self.model.user(state, t, h, self.memory)
         return h, potential
 
     def accelerations(self, t, y):
