@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
-from benchmarks.dapbc_reference import GRAVITY, MODELS, Reference, funct_c, reference_rhs
+from benchmarks.dapbc_reference import GRAVITY, MODELS, Reference, State, funct_c, reference_rhs
 
 TIGHT = dict(method="DOP853", rtol=1e-12, atol=1e-12)
 
@@ -135,3 +135,28 @@ def test_cart_b_follows_the_type_c_driver():
     t = np.linspace(0, 3, 7)
     sol = integrate(ref, y0, 3.0, t_eval=t)
     assert np.allclose(sol.y[0], 0.5 - 0.1 * np.array([f(s)[0] for s in t]), rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["Cart_A", "Cart_B", "Cart_C", "Cart_D"])
+def test_cart_energy_balance(name):
+    """Weight is the carts' only conservative force and the joints are ideal, so the energy
+    changes by the work of the driver (lam^T nu: the multipliers times the prescribed rates) and
+    of the user forces (motor torque, drag): E(t) - E(0) = integral of lam^T nu + h_user . q'."""
+    ref = Reference(name)
+    _, y0, _ = reference_rhs(name)
+    t = np.linspace(0, 3.0, 601)
+    y = ref.solve(y0, t)
+    n = y0.size // 2
+    power = []
+    for tk, yk in zip(t, y):
+        _, lam = ref.accelerations(tk, yk)
+        _, _, nu, _ = ref.rows(yk[:n], yk[n:], tk)
+        h_user = np.zeros(n)
+        if ref.model.user is not None:
+            ref.model.user(State(yk[:n], yk[n:]), tk, h_user, {})
+        power.append(lam @ nu + h_user @ yk[n:])
+    work = np.concatenate([[0.0], np.cumsum(np.diff(t) * (np.array(power[1:]) + power[:-1]) / 2)])
+    energy = np.array([ref.energy(s)[2] for s in y])
+    if name != "Cart_A":  # Cart_A runs at constant speed from the start; the others speed up
+        assert np.abs(energy - energy[0]).max() > 1.0
+    assert np.allclose(energy - energy[0], work, rtol=0, atol=1e-5 * max(np.abs(work).max(), 1.0))
