@@ -68,13 +68,19 @@ def collect(plan: Plan) -> Path:
 def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
     """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one), opened
     lazily as xarray opens files (values are read when used; ``tree.close()`` releases the file),
-    or read whole into memory and closed with ``load=True``. ModelError when there is none."""
+    or read whole into memory and closed with ``load=True``. ModelError when there is none.
+    The varied keys are indexed: ``tree.ds.sel(c_mu=0.3)`` (one key at a time; several with
+    :func:`mbds.data.analysis.select`)."""
     path = Path(path)
     if path.is_dir():
         path = path / CAMPAIGN_FILE
     if not path.is_file():
         raise ModelError("no campaign file; collect the campaign first: mbds-campaign collect", path)
     tree = xr.open_datatree(path, engine="netcdf4")
+    root = tree.ds
+    for name in [name for name, c in root.coords.items() if "key" in c.attrs and c.dims == ("variant",)]:
+        root = root.set_xindex(name)
+    tree.dataset = root
     if not load:
         return tree
     with tree:
@@ -164,15 +170,17 @@ def summary(plan: Plan, ledger: Ledger, runs: list[Task], histories: dict[str, x
     data["status"] = (run_dims, status.astype(str), {"long_name": "state of the run task in the ledger"})
     data["seed"] = (("variant", "replicate"), seeds, {"long_name": "seed of the chain's runs"})
     coords = {
-        "variant": ("variant", np.array(variants, dtype=object)),
-        "replicate": ("replicate", np.arange(replicates, dtype=np.int32)),
-        "version": ("version", np.array(versions, dtype=np.int32)),
+        "variant": ("variant", np.array(variants, dtype=object), {"long_name": "variant of the campaign"}),
+        "replicate": ("replicate", np.arange(replicates, dtype=np.int32), {"long_name": "replicate", "units": "1"}),
+        "version": ("version", np.array(versions, dtype=np.int32), {"long_name": "model version", "units": "1"}),
         "body": ("body", first["body"].values),
         "point_body": ("point", first["point_body"].values),
         "point_number": ("point", first["point_number"].values),
     }
     for p in plan.campaign.parameters if plan.campaign else ():
-        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]), {"key": p.key})
+        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]),
+                                {"key": p.key, "long_name": f"varied key {p.key}", "units": "1",
+                                 "comment": "in the unit the model's files give it"})
     ds = xr.Dataset(data, coords=coords, attrs=provenance(plan, ledger))
     return ds if replicates > 1 else ds.squeeze("replicate", drop=True)
 
@@ -181,6 +189,7 @@ def provenance(plan: Plan, ledger: Ledger) -> dict:
     """Attributes of the campaign file: what made it, where and when."""
     runs = ledger.campaign.get("runs", [])
     return {
+        "Conventions": "CF-1.10",
         "title": f"mbds campaign of {plan.job.path.name}",
         "mbds_version": __version__,
         "git_commit": _git_commit(),
