@@ -35,7 +35,8 @@ class RunRecord:
     ``counters``; ``max_penetration`` (m) is the largest since the chain of runs began;
     ``final_state`` is the exact kernel state at ``end_time``. ``dependent_position`` (samples,
     dependent) holds the ``.dc`` coordinates, ``pose`` (samples, bodies, 3) every body's x, y (m)
-    and Rz (rad); ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1).
+    and Rz (rad); ``watch_body``/``watch_points`` the body and first and last point of each watch;
+    ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1).
     """
 
     model: str
@@ -71,6 +72,8 @@ class RunRecord:
     max_penetration: float
     final_state: RunState
     options: dict[str, float]
+    watch_body: list[str] = field(default_factory=list)
+    watch_points: list[tuple[int, int]] = field(default_factory=list)
     dependent: list[str] = field(default_factory=list)
     dependent_units: list[str] = field(default_factory=list)
     dependent_position: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
@@ -164,6 +167,8 @@ def make_record(
             "angle_instead_of_work": int(common.absolute_angle_instead_of_work),
             "smooth_work_left_right": common.smooth_work_left_right,
         },
+        watch_body=[model.bodies[w.body].name for w in model.watches],
+        watch_points=[(w.points[0], w.points[-1]) for w in model.watches],
         dependent=[coordinate_label(c) for c in model.dependent],
         dependent_units=[coordinate_unit(c) for c in model.dependent],
         dependent_position=dependent.position,
