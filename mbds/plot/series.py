@@ -104,14 +104,14 @@ def coordinates(run: xr.Dataset) -> Figure:
     q and the dependent coordinates of an MBDS run, r and p of a DAP_BC run."""
     series = _coordinate_series(run)
     units = list(dict.fromkeys(unit for _, unit, _ in series))
-    figure = Figure(figsize=(7, 2.5 * len(units) + 1), layout="constrained")
+    figure = Figure(figsize=(9, 2.5 * len(units) + 1), layout="constrained")
     panels = np.atleast_1d(figure.subplots(len(units), 1, sharex=True))
     time = run["time"].values
     for name, unit, values in series:
         panels[units.index(unit)].plot(time, values, label=name)
     for ax, unit in zip(panels, units):
         ax.set_ylabel(f"coordinate ({unit})" if unit != "1" else "coordinate")
-        ax.legend(fontsize="small")
+        ax.legend(fontsize="x-small", ncols=-(-len(ax.lines) // 6), loc="upper left", bbox_to_anchor=(1.01, 1))
     panels[-1].set_xlabel(label(run["time"]))
     panels[0].set_title(run_title(run, "coordinates"))
     return figure
