@@ -42,7 +42,8 @@ def stack(tree: xr.DataTree, name: str, version: int) -> xr.DataArray:
         runs = [_run_node(tree, variant, version, r)[name] for r in replicates]
         rows.append(xr.concat(runs, "replicate", join="outer") if replicates != [None] else runs[0])
     out = xr.concat(rows, "variant", join="outer", coords="minimal", compat="override")
-    out = out.assign_coords(variant=variants, **{k: c for k, c in root.coords.items() if c.dims == ("variant",)})
+    keys = {k: ("variant", c.values, c.attrs) for k, c in root.coords.items() if c.dims == ("variant",) and k != "variant"}
+    out = out.assign_coords(variant=variants, **keys)
     return out.assign_coords(replicate=replicates) if replicates != [None] else out
 
 

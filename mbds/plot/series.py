@@ -42,7 +42,8 @@ def watches(run: xr.Dataset, watch: list[str] | None = None) -> Figure:
         panels[2].plot(time.values, column, label=str(text))
     panels[2].set_ylabel("lost work since the run's start (J)")
     panels[2].set_xlabel(label(time))
-    panels[0].legend(fontsize="small", ncols=min(len(chosen), 4))
+    if len(chosen) <= 12:
+        panels[0].legend(fontsize="small", ncols=min(len(chosen), 4))
     panels[0].set_title(run_title(run, "watches"))
     return figure
 
