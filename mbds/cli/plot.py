@@ -57,6 +57,10 @@ def animate_command(path: Path, output: Path | None, fps: float, speed: float, c
     from mbds import plot
     from mbds.plot.source import history_paths
 
+    from mbds.plot.figure import VIDEO_FORMATS
+
+    if output is not None and output.suffix.lower().lstrip(".") not in VIDEO_FORMATS:
+        raise ModelError(f"an animation is saved as {' or '.join(VIDEO_FORMATS)}", output)
     history = history_paths(path)[-1]
     animation = plot.animate(plot.open_run(history), fps=fps, speed=speed, contacts=contacts)
     return plot.save(animation, output or history.parent / f"animation.{plot.video_suffix()}", fps=fps)

@@ -11,7 +11,7 @@ from tests.examples import copy_example
 matplotlib.use("Agg")
 
 BREAK = {"woodpecker": 0.03, "wearballs": 0.02, "2mass": 0.05}
-GRID = "contact.mass1-mass2.friction = 0.1, 0.3\nworld.breakTime = 0.03\nfolder = campaign\n"
+GRID = "contact.mass1-mass2.friction = 0.1, 0.3\nworld.breakTime = 0.2\nfolder = campaign\n"
 
 
 @pytest.fixture(scope="session")
