@@ -139,6 +139,23 @@ def animate(
         print(f"wrote {animate_command(path, output, fps, speed, contacts)}")
 
 
+@app.command()
+def versions(
+    model: Path = typer.Argument(..., help="A model folder (campaigns/wearballs)."),
+    delete: str = typer.Option(None, "--delete", help="Delete these versions, e.g. 003-005."),
+    yes: bool = typer.Option(False, "--yes", help="Delete without asking."),
+    resample: str = typer.Option(None, "--resample", help="Resample the history of these versions, e.g. 002."),
+    interval: float = typer.Option(None, "--interval", help="--resample: the new sample interval (s)."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """List a model's versions with their status, break time, lost work and wall time; delete
+    versions, or resample a history to a coarser interval."""
+    from mbds.cli.versions import versions_command
+
+    with reported_errors(debug):
+        versions_command(model, delete, yes, resample, interval, _console())
+
+
 def _console() -> Console:
     """A console for the terminal, or a wide one for a file or pipe."""
     return Console() if sys.stdout.isatty() else Console(width=140)

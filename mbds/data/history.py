@@ -140,6 +140,7 @@ def _attributes(r: RunRecord) -> dict:
         "run_driver_work": r.run_driver_work,
         "energy_residual": r.energy_residual,
         "max_penetration": r.max_penetration,
+        "wall_time": r.wall_time,
         **r.counters,
         **{f"watch_{k}": v for k, v in r.options.items()},
         "input_files": " ".join(r.inputs),

@@ -36,7 +36,7 @@ class RunRecord:
     ``final_state`` is the exact kernel state at ``end_time``. ``dependent_position`` (samples,
     dependent) holds the ``.dc`` coordinates, ``pose`` (samples, bodies, 3) every body's x, y (m)
     and Rz (rad); ``watch_body``/``watch_points`` the body and first and last point of each watch;
-    ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1).
+    ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1); ``wall_time`` (s) how long the run took.
     """
 
     model: str
@@ -81,6 +81,7 @@ class RunRecord:
     body_kind: list[str] = field(default_factory=list)
     body_color: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     inputs: dict[str, str] = field(default_factory=dict)
+    wall_time: float = float("nan")
     continued_from: int | None = None
     alerts: list[str] = field(default_factory=list)
 
