@@ -9,12 +9,17 @@ import xarray as xr
 from matplotlib import colormaps
 from matplotlib.cm import ScalarMappable
 from matplotlib.colors import Normalize
+from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
 
 from mbds.errors import ModelError
 from mbds.plot.source import history_paths, open_history
 
 SHAPE_VARIABLES = ("shape_x", "shape_y", "point_body", "body")
+LINE_STYLES = ("-", "--", ":", "-.")
+VERSION_COLORS = ListedColormap(colormaps["Blues"](np.linspace(0.35, 1.0, 256)))
+"""Light (first version) to dark (last)."""
 
 
 def wear(source, body: str, versions: list[int] | None = None, replicate: int = 0) -> Figure:
@@ -39,7 +44,7 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
     rows = -(-len(panels) // columns)
     figure = Figure(figsize=(3.2 * columns + 1.2, 3.2 * rows + 0.6), layout="constrained")
     axes = np.atleast_1d(figure.subplots(rows, columns, sharex=True, sharey=True, squeeze=False)).ravel()
-    shades = colormaps["Blues"](np.linspace(0.35, 1.0, len(shown)))
+    shades = VERSION_COLORS(np.linspace(0.0, 1.0, len(shown)))
     for k, (ax, panel) in enumerate(zip(axes, panels)):
         for j, version in enumerate(shown):
             px, py = np.append(x[k, j], x[k, j, 0]), np.append(y[k, j], y[k, j, 0])
@@ -50,7 +55,7 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
         ax.set_ylabel("y (m)")
     for ax in axes[len(panels):]:
         ax.set_visible(False)
-    bar = ScalarMappable(Normalize(shown[0], shown[-1] if len(shown) > 1 else shown[0] + 1), colormaps["Blues"])
+    bar = ScalarMappable(Normalize(shown[0], shown[-1] if len(shown) > 1 else shown[0] + 1), VERSION_COLORS)
     figure.colorbar(bar, ax=axes[: len(panels)].tolist(), label="version")
     figure.suptitle(f"{body} worn: {title}")
     return figure
@@ -78,7 +83,7 @@ def campaign_summary(campaign: xr.DataTree) -> Figure:
     """Three panels against version: the mechanical energy lost in each run (J), the mechanical
     energy at the run's end (J) and the largest reshaping (m, the largest displacement of a
     shape point from the previous version's shape); one line per variant (the mean over
-    replicates), coloured by the first varied key. Reads only the campaign's summary."""
+    replicates), coloured by the first varied key and dashed by the second. Reads only the campaign's summary."""
     root = campaign.ds
     versions = root["version"].values
     lost, final = root["run_lost_work"], root["end_energy"]
@@ -87,16 +92,18 @@ def campaign_summary(campaign: xr.DataTree) -> Figure:
     shift = _largest_reshaping(root)
     figure = Figure(figsize=(7, 8), layout="constrained")
     panels = figure.subplots(3, 1, sharex=True)
-    colors, legend = _variant_colors(root)
-    for k, variant in enumerate(root["variant"].values):
+    colors, styles, legend = _variant_styles(root)
+    for k in range(root.sizes["variant"]):
         for ax, values in zip(panels, (lost, final, shift)):
-            ax.plot(versions, values.isel(variant=k).values, "o-", color=colors[k], label=legend[k], markersize=3)
+            ax.plot(versions, values.isel(variant=k).values, marker="o", linestyle=styles[k], color=colors[k],
+                    label=legend[k], markersize=3)
+    panels[2].xaxis.set_major_locator(MaxNLocator(integer=True))
     panels[0].set_ylabel("lost work in the run (J)")
     panels[1].set_ylabel("mechanical energy at the end (J)")
     panels[2].set_ylabel("largest reshaping (m)")
     panels[2].set_xlabel("version")
-    if len(legend) <= 12:
-        panels[0].legend(fontsize="small", ncols=2)
+    if len(legend) <= 16:
+        figure.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", fontsize="small", ncols=2)
     panels[0].set_title(root.attrs.get("title", "campaign"))
     return figure
 
@@ -111,16 +118,24 @@ def _largest_reshaping(root: xr.Dataset) -> xr.DataArray:
     return shift.reindex(version=root["version"])
 
 
-def _variant_colors(root: xr.Dataset) -> tuple[list, list[str]]:
-    """A colour and a legend text per variant: by the value of the first numeric varied key,
-    else one colour each."""
-    keys = [n for n, c in root.coords.items() if "key" in c.attrs and c.dims == ("variant",)]
+def _variant_styles(root: xr.Dataset) -> tuple[list, list[str], list[str]]:
+    """A colour, a line style and a legend text per variant, from the varied keys that take
+    more than one value: colour by the first numeric one, line style by the next one."""
     count = root.sizes["variant"]
+    keys = [n for n, c in root.coords.items()
+            if "key" in c.attrs and c.dims == ("variant",) and len(np.unique(c.values)) > 1]
     legend = [", ".join(f"{root[k].attrs['key']} = {root[k].values[i]}" for k in keys) or str(root["variant"].values[i])
               for i in range(count)]
     numeric = [k for k in keys if root[k].dtype.kind in "fiu"]
     if numeric:
         values = root[numeric[0]].values.astype(float)
-        span = Normalize(values.min(), values.max() if values.max() > values.min() else values.min() + 1)
-        return [colormaps["viridis"](span(v)) for v in values], legend
-    return [colormaps["tab10"](i % 10) for i in range(count)], legend
+        span = Normalize(values.min(), values.max())
+        colors = [colormaps["viridis"](0.85 * span(v)) for v in values]
+    else:
+        colors = [colormaps["tab10"](i % 10) for i in range(count)]
+    rest = [k for k in keys if not numeric or k != numeric[0]]
+    styles = ["-"] * count
+    if rest:
+        levels = list(np.unique(root[rest[0]].values))
+        styles = [LINE_STYLES[levels.index(v) % len(LINE_STYLES)] for v in root[rest[0]].values]
+    return colors, styles, legend
