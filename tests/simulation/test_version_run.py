@@ -201,7 +201,7 @@ from pathlib import Path
 import mbds.data.history as H
 from mbds.simulation.version_run import RunOptions, run_version
 
-def stall(state):
+def stall(*args):
     Path({str(marker)!r}).touch()
     time.sleep(60)
 
