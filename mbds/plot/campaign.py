@@ -69,7 +69,7 @@ def _shape_table(source, replicate: int) -> tuple[xr.Dataset, str]:
         if "replicate" in table["shape_x"].dims:
             table = table.isel(replicate=replicate)
         return table.rename(variant="panel"), root.attrs.get("title", "campaign")
-    datasets = [open_history(p) for p in history_paths(source)] if isinstance(source, (str, Path)) else list(source)
+    datasets = [_shapes_of(p) for p in history_paths(source)] if isinstance(source, (str, Path)) else list(source)
     if not datasets:
         raise ModelError("no runs to draw")
     model = datasets[0].attrs.get("model", "?")
@@ -77,6 +77,12 @@ def _shape_table(source, replicate: int) -> tuple[xr.Dataset, str]:
     rows = [ds[list(SHAPE_VARIABLES)].expand_dims(version=[v]) for ds, v in zip(datasets, versions)]
     table = xr.concat(rows, "version", data_vars="minimal", coords="minimal", compat="override")
     return table.expand_dims(panel=[f"model {model}"]), f"model {model}"
+
+
+def _shapes_of(path: Path) -> xr.Dataset:
+    """The shape variables of one history, read (the file is closed again)."""
+    with open_history(path) as ds:
+        return ds[list(SHAPE_VARIABLES)].load()
 
 
 def campaign_summary(campaign: xr.DataTree) -> Figure:
@@ -103,7 +109,7 @@ def campaign_summary(campaign: xr.DataTree) -> Figure:
     panels[2].set_ylabel("largest reshaping (m)")
     panels[2].set_xlabel("version")
     if len(legend) <= 16:
-        figure.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", fontsize="small", ncols=2)
+        figure.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", fontsize="small")
     panels[0].set_title(root.attrs.get("title", "campaign"))
     return figure
 
