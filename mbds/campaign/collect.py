@@ -98,7 +98,8 @@ def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
     tree: the summary opened lazily as xarray opens files, and each run's node built from its
     reference, its values read from the run's ``history.nc`` when used (``tree.close()`` releases
     the campaign file); or everything read into memory, files closed, with ``load=True``.
-    ModelError when there is none."""
+    The varied keys are indexed: ``tree.ds.sel(c_mu=0.3)`` (one key at a time; several with
+    :func:`mbds.data.analysis.select`). ModelError when there is none."""
     path = Path(path)
     if path.is_dir():
         path = path / CAMPAIGN_FILE
@@ -112,9 +113,11 @@ def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
         for node, file, description, a, b in zip(runs["node"][...], runs["file"][...], runs["description"][...],
                                                  starts, ends):
             nodes[node] = open_described(path.parent / file, description, times[a:b])
-    summary_ds = xr.open_dataset(path, engine="netcdf4")
+    opened = summary_ds = xr.open_dataset(path, engine="netcdf4")
+    for name in [name for name, c in summary_ds.coords.items() if "key" in c.attrs and c.dims == ("variant",)]:
+        summary_ds = summary_ds.set_xindex(name)
     tree = xr.DataTree.from_dict({"/": summary_ds, **nodes})
-    tree.set_close(summary_ds.close)
+    tree.set_close(opened.close)  # the file itself: a handle left to the garbage collector may close inside HDF5
     if not load:
         return tree
     with tree:
@@ -174,15 +177,17 @@ def summary(plan: Plan, ledger: Ledger, runs: list[Task], histories: dict[str, x
     data["status"] = (run_dims, status.astype(str), {"long_name": "state of the run task in the ledger"})
     data["seed"] = (("variant", "replicate"), seeds, {"long_name": "seed of the chain's runs"})
     coords = {
-        "variant": ("variant", np.array(variants, dtype=object)),
-        "replicate": ("replicate", np.arange(replicates, dtype=np.int32)),
-        "version": ("version", np.array(versions, dtype=np.int32)),
+        "variant": ("variant", np.array(variants, dtype=object), {"long_name": "variant of the campaign"}),
+        "replicate": ("replicate", np.arange(replicates, dtype=np.int32), {"long_name": "replicate", "units": "1"}),
+        "version": ("version", np.array(versions, dtype=np.int32), {"long_name": "model version", "units": "1"}),
         "body": ("body", first["body"].values),
         "point_body": ("point", first["point_body"].values),
         "point_number": ("point", first["point_number"].values),
     }
     for p in plan.campaign.parameters if plan.campaign else ():
-        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]), {"key": p.key})
+        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]),
+                                {"key": p.key, "long_name": f"varied key {p.key}", "units": "1",
+                                 "comment": "in the unit the model's files give it"})
     ds = xr.Dataset(data, coords=coords, attrs=provenance(plan, ledger))
     return ds if replicates > 1 else ds.squeeze("replicate", drop=True)
 
@@ -192,6 +197,7 @@ def provenance(plan: Plan, ledger: Ledger) -> dict:
     runs = ledger.campaign.get("runs", [])
     same, complete = identical_replicates(plan, ledger)
     return {
+        "Conventions": "CF-1.10",
         "title": f"mbds campaign of {plan.job.path.name}",
         "mbds_version": __version__,
         "git_commit": _git_commit(),

@@ -104,6 +104,20 @@ def collect(path: Path = JOB, debug: bool = DEBUG) -> None:
 
 
 @app.command()
+def plot(
+    path: Path = JOB,
+    output: Path = typer.Option(None, "-o", "--output", help="Folder for the figures; default <campaign folder>/figures."),
+    debug: bool = DEBUG,
+) -> None:
+    """Draw a collected campaign's figures: its summary and the worn shapes of every body."""
+    from mbds.cli.plot import campaign_plot_command
+
+    with reported_errors(debug):
+        for written in campaign_plot_command(path, output):
+            print(f"wrote {written}")
+
+
+@app.command()
 def run(
     path: Path = JOB,
     workers: int = typer.Option(1, "--workers", min=1, help="Processes running tasks at once without MPI."),

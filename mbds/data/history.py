@@ -33,7 +33,7 @@ def write_history(path: str | Path, record: RunRecord) -> None:
     encoding = {name: dict(COMPRESSED) for name, v in root.data_vars.items() if v.ndim == 2 and v.size}
     with atomic_path(path) as tmp:
         root.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
-        state_dataset(record.final_state).to_netcdf(tmp, mode="a", group=STATE_GROUP, engine="netcdf4")
+        state_dataset(record.final_state, record.coordinate_units).to_netcdf(tmp, mode="a", group=STATE_GROUP, engine="netcdf4")
 
 
 def dataset(record: RunRecord) -> xr.Dataset:
@@ -43,9 +43,14 @@ def dataset(record: RunRecord) -> xr.Dataset:
     kind, imp_units = ("force", "N") if r.watches.force else ("impulse", "N s")
     since = "since the run's start"
     data = {
-        "q": (ts, r.q, _cf("generalized coordinates", "m or rad")),
-        "qd": (ts, r.qd, _cf("generalized velocities", "m/s or rad/s")),
-        "qdd": (ts, r.qdd, _cf("generalized accelerations", "m/s2 or rad/s2")),
+        "q": (ts, r.q, _per_coordinate("generalized coordinates", "coordinate_unit")),
+        "qd": (ts, r.qd, _per_coordinate("generalized velocities", "velocity_unit")),
+        "qdd": (ts, r.qdd, _per_coordinate("generalized accelerations", "acceleration_unit")),
+        "dependent_q": (("time", "dependent"), r.dependent_position,
+                        _per_coordinate("dependent coordinates (.dc)", "dependent_unit")),
+        "body_x": (("time", "body"), r.pose[:, :, 0], _cf("x of the body frame's origin", "m")),
+        "body_y": (("time", "body"), r.pose[:, :, 1], _cf("y of the body frame's origin", "m")),
+        "body_angle": (("time", "body"), r.pose[:, :, 2], _cf("rotation Rz of the body frame", "rad")),
         "mechanical_energy": ("time", r.energy, _cf("mechanical energy (.me expression)", "J")),
         "lost_work": ("time", r.lost_work, _cf(f"mechanical energy lost at contacts {since}", "J")),
         "driver_work": ("time", r.driver_work, _cf(f"work of rheonomic drivers {since}", "J")),
@@ -68,11 +73,25 @@ def dataset(record: RunRecord) -> xr.Dataset:
     coords = {
         "time": ("time", r.time, _cf("time", "s", axis="T")),
         "coordinate": ("coordinate", _text(r.coordinates), _named("generalized coordinate")),
-        "coordinate_unit": ("coordinate", _text(r.coordinate_units), _named("unit of the coordinate")),
+        "coordinate_unit": ("coordinate", _text(r.coordinate_units), _named("UDUNITS unit of the coordinate")),
+        "velocity_unit": ("coordinate", _text([_rate(u, 1) for u in r.coordinate_units]),
+                          _named("UDUNITS unit of the coordinate's velocity")),
+        "acceleration_unit": ("coordinate", _text([_rate(u, 2) for u in r.coordinate_units]),
+                              _named("UDUNITS unit of the coordinate's acceleration")),
+        "dependent": ("dependent", _text(r.dependent), _named("dependent coordinate")),
+        "dependent_unit": ("dependent", _text(r.dependent_units), _named("UDUNITS unit of the dependent coordinate")),
         "watch": ("watch", _text(r.watch_labels), _named("watch label")),
+        "watch_body": ("watch", _text(r.watch_body), _named("body of the watched points")),
+        "watch_first_point": ("watch", np.array([p[0] for p in r.watch_points], dtype=np.int32).reshape(-1),
+                              _named("first watched point (point_number)")),
+        "watch_last_point": ("watch", np.array([p[1] for p in r.watch_points], dtype=np.int32).reshape(-1),
+                             _named("last watched point (point_number)")),
         "watch_frame": ("watch", _text(frames), _named("frame of the legacy impulse columns (nt or xy)")),
         "body": ("body", _text(r.bodies), _named("body name")),
+        "body_kind": ("body", _text(r.body_kind), _named("moving, fixed or virtual")),
+        "body_color": (("body", "rgb"), r.body_color, _named("RGBColor of the body (red, green, blue; 0-1)")),
         "point_body": ("point", r.point_body.astype(np.int32), _named("index of the point's body")),
+        "point_body_name": ("point", _text([r.bodies[i] for i in r.point_body]), _named("name of the point's body")),
         "point_number": ("point", r.point_number.astype(np.int32), _named("point number in its body's shape")),
     }
     return xr.Dataset(data, coords=coords, attrs=_attributes(r))
@@ -80,6 +99,17 @@ def dataset(record: RunRecord) -> xr.Dataset:
 
 def _cf(long_name: str, units: str, **extra) -> dict:
     return {"long_name": long_name, "units": units, **extra}
+
+
+def _per_coordinate(long_name: str, unit_variable: str) -> dict:
+    """Attributes of a variable whose columns have different units: they are in ``unit_variable``."""
+    return {"long_name": long_name, "ancillary_variables": unit_variable,
+            "comment": f"each column's UDUNITS unit is in {unit_variable}"}
+
+
+def _rate(unit: str, order: int) -> str:
+    """The unit of the ``order``-th time derivative of a coordinate in ``unit``."""
+    return f"{unit} s-{order}" if unit != "1" else f"s-{order}"
 
 
 def _named(long_name: str) -> dict:
@@ -110,6 +140,7 @@ def _attributes(r: RunRecord) -> dict:
         "run_driver_work": r.run_driver_work,
         "energy_residual": r.energy_residual,
         "max_penetration": r.max_penetration,
+        "wall_time": r.wall_time,
         **r.counters,
         **{f"watch_{k}": v for k, v in r.options.items()},
         "input_files": " ".join(r.inputs),
@@ -118,13 +149,15 @@ def _attributes(r: RunRecord) -> dict:
     return attrs
 
 
-def state_dataset(state: RunState) -> xr.Dataset:
-    """The ``final_state`` group: the kernel state, exactly."""
+def state_dataset(state: RunState, units: list[str]) -> xr.Dataset:
+    """The ``final_state`` group: the kernel state, exactly; ``units`` of the coordinates."""
     columns = "impN impT impX impY work angle"
-    return xr.Dataset({
+    return xr.Dataset(attrs={"Conventions": "CF-1.10"}, data_vars={
         "clock": ("clock_entry", state.clock, {**_named("kernel clock and counters"), "entries": CLOCK_ENTRIES}),
-        "q": ("coordinate", state.q, _cf("generalized coordinates", "m or rad")),
-        "qd": ("coordinate", state.u, _cf("generalized velocities", "m/s or rad/s")),
+        "q": ("coordinate", state.q, _per_coordinate("generalized coordinates", "coordinate_unit")),
+        "qd": ("coordinate", state.u, _per_coordinate("generalized velocities", "velocity_unit")),
+        "coordinate_unit": ("coordinate", _text(units), _named("UDUNITS unit of the coordinate")),
+        "velocity_unit": ("coordinate", _text([_rate(u, 1) for u in units]), _named("UDUNITS unit of the velocity")),
         "rng": ("rng_word", state.rng, _named("state of the generator of lexicographic tolerances")),
         "point_loss": ("kernel_point", state.point_loss, _cf("lost work per kernel point (closing points too)", "J")),
         "point_interval": (("kernel_point", "point_column"), state.point_interval,

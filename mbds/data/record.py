@@ -7,10 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
+from mbds.data.poses import body_poses, dependent_series
 from mbds.data.watches import WatchSeries, distinct_points, smooth_points, watch_series
 from mbds.io.coordinates import CoordinateName
 from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
+from mbds.model.bodies import FIXED, Body
 from mbds.model.load import Model
 from mbds.simulation.run import RunResult, RunState
 
@@ -31,7 +33,10 @@ class RunRecord:
     Times in s; ``lost_work``/``driver_work`` (J) count from the start of this run, as do the
     per-point losses (J, distinct shape points of all bodies, see ``point_body``) and the
     ``counters``; ``max_penetration`` (m) is the largest since the chain of runs began;
-    ``final_state`` is the exact kernel state at ``end_time``.
+    ``final_state`` is the exact kernel state at ``end_time``. ``dependent_position`` (samples,
+    dependent) holds the ``.dc`` coordinates, ``pose`` (samples, bodies, 3) every body's x, y (m)
+    and Rz (rad); ``watch_body``/``watch_points`` the body and first and last point of each watch;
+    ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1); ``wall_time`` (s) how long the run took.
     """
 
     model: str
@@ -67,7 +72,16 @@ class RunRecord:
     max_penetration: float
     final_state: RunState
     options: dict[str, float]
+    watch_body: list[str] = field(default_factory=list)
+    watch_points: list[tuple[int, int]] = field(default_factory=list)
+    dependent: list[str] = field(default_factory=list)
+    dependent_units: list[str] = field(default_factory=list)
+    dependent_position: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    pose: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3)))
+    body_kind: list[str] = field(default_factory=list)
+    body_color: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     inputs: dict[str, str] = field(default_factory=dict)
+    wall_time: float = float("nan")
     continued_from: int | None = None
     alerts: list[str] = field(default_factory=list)
 
@@ -87,9 +101,9 @@ def coordinate_label(name: CoordinateName) -> str:
 
 
 def coordinate_unit(name: CoordinateName) -> str:
-    """m or rad for body coordinates; empty for free ``g'`` coordinates (unit set by the model)."""
+    """m or rad for body coordinates; 1 for free ``g'`` coordinates (the model sets what they mean)."""
     if name.kind != "b":
-        return ""
+        return "1"
     return "m" if name.coordinate in LENGTH_COORDINATES else "rad"
 
 
@@ -112,6 +126,7 @@ def make_record(
     def energy(state: RunState) -> float:
         return float(compiled.mechanical_energy(state.q, state.u, state.clock[K.T], arrays.parameters))
 
+    dependent = dependent_series(compiled, arrays.parameters, result.time, result.q, result.u, result.a)
     return RunRecord(
         model=model.name,
         version=model.version,
@@ -153,9 +168,33 @@ def make_record(
             "angle_instead_of_work": int(common.absolute_angle_instead_of_work),
             "smooth_work_left_right": common.smooth_work_left_right,
         },
+        watch_body=[model.bodies[w.body].name for w in model.watches],
+        watch_points=[(w.points[0], w.points[-1]) for w in model.watches],
+        dependent=[coordinate_label(c) for c in model.dependent],
+        dependent_units=[coordinate_unit(c) for c in model.dependent],
+        dependent_position=dependent.position,
+        pose=body_poses(arrays, result.q, dependent.position),
+        body_kind=[body_kind(b) for b in model.bodies],
+        body_color=np.array([body_color(f.main.rgb_color) for f in model.files.bodies]).reshape(-1, 3),
         inputs=_inputs(model, folder),
         continued_from=continued_from,
     )
+
+
+def body_kind(body: Body) -> str:
+    """virtual (moves with its carrier), fixed (no coordinate moves it) or moving."""
+    if body.virtual:
+        return "virtual"
+    return "fixed" if all(kind == FIXED for kind in body.binding) else "moving"
+
+
+def body_color(text: str) -> tuple[float, float, float]:
+    """The ``RGBColor`` of a ``.bdy`` file (three numbers 0-1); green, the default, when unreadable."""
+    try:
+        red, green, blue = (min(max(float(v), 0.0), 1.0) for v in text.split())
+    except ValueError:
+        return (0.0, 1.0, 0.0)
+    return (red, green, blue)
 
 
 def _inputs(model: Model, folder: Path | None) -> dict[str, str]:

@@ -60,7 +60,8 @@ def open_described(path: str | Path, description: str, long_values: np.ndarray) 
     """The dataset that :func:`describe` described, its variables read from ``path`` when used.
 
     Decoded as mbds writes its files: ``_FillValue`` (NaN for floats) goes to the encoding and
-    the variables named in ``coordinates`` attributes become coordinates, as
+    the variables named in ``coordinates`` attributes (of variables or of the file) become
+    coordinates, as
     ``xarray.open_dataset`` makes them."""
     header = json.loads(description)
     path = Path(path)
@@ -80,10 +81,12 @@ def open_described(path: str | Path, description: str, long_values: np.ndarray) 
             data = indexing.LazilyIndexedArray(_FileVariable(path, name, shape, np.dtype(spec["dtype"])))
         encoding = {} if fill is None else {"_FillValue": fill}
         variables[name] = xr.Variable(dims, data, attributes, encoding)
+    attrs = dict(header["attrs"])
+    coordinates.update(attrs.pop("coordinates", "").split())
     coordinates |= {name for name, v in variables.items() if v.dims == (name,)}
     data_vars = {n: v for n, v in variables.items() if n not in coordinates}
     coords = {n: v for n, v in variables.items() if n in coordinates}
-    return xr.Dataset(data_vars, coords=coords, attrs=header["attrs"])
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
 class _FileVariable(BackendArray):

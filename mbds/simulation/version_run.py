@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -75,10 +76,12 @@ def run_version(folder: str | Path, options: RunOptions, progress: Progress | No
             progress(t0, t, end, state.clock[K.STEPS] - start.clock[K.STEPS])
 
     settings = RunSettings(end, seed, tuple(job.lexico_randomization_range))
+    wall = time.perf_counter()
     result = simulate(model, settings, state, report, on_events=on_events, chunk=PROGRESS_CHUNK)
     record = make_record(
         model, result, start, seed=seed, break_time=end, continued_from=options.start_from, folder=folder
     )
+    record.wall_time = time.perf_counter() - wall
     record.alerts = alerts + [end_alert(record)]
     for stale in folder.glob(".*.tmp"):  # left by a run that was killed while writing
         stale.unlink(missing_ok=True)

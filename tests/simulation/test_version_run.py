@@ -46,7 +46,7 @@ def test_history_has_the_documented_variables_and_attributes(tmp_path):
         assert list(ds["coordinate_unit"].values) == ["m", "m", "rad"]
         assert list(ds["watch"].values) == ["mass1#0", "mass1#1", "mass1#2"]
         units = {
-            "q": "m or rad", "qd": "m/s or rad/s", "qdd": "m/s2 or rad/s2", "mechanical_energy": "J",
+            "mechanical_energy": "J", "body_x": "m", "body_y": "m", "body_angle": "rad",
             "lost_work": "J", "driver_work": "J", "impulse_normal": "N s", "impulse_tangential": "N s",
             "impulse_x": "N s", "impulse_y": "N s", "work": "J", "shape_x": "m", "shape_y": "m",
             "point_lost_work": "J", "point_lost_work_smoothed": "J", "time": "s",
@@ -54,6 +54,14 @@ def test_history_has_the_documented_variables_and_attributes(tmp_path):
         for name, unit in units.items():
             assert ds[name].attrs["units"] == unit, name
             assert ds[name].attrs["long_name"], name
+        for name, units in {"q": "coordinate_unit", "qd": "velocity_unit", "qdd": "acceleration_unit"}.items():
+            assert ds[name].attrs["ancillary_variables"] == units and "units" not in ds[name].attrs
+        assert list(ds["velocity_unit"].values) == ["m s-1", "m s-1", "rad s-1"]
+        # mass1's pose is its own coordinates; mass2 has none (fixed at its start pose)
+        np.testing.assert_array_equal(ds["body_x"].sel(body="mass1").values, ds["q"].values[:, 0])
+        np.testing.assert_array_equal(ds["body_angle"].sel(body="mass1").values, ds["q"].values[:, 2])
+        assert list(ds["body_kind"].values) == ["moving", "fixed"]
+        assert list(ds["point_body_name"].values) == ["mass1"] * 5 + ["mass2"] * 4
         assert ds["q"].dims == ("time", "coordinate") and ds["work"].dims == ("time", "watch")
         assert "angle" not in ds and "t_div_n" not in ds
         assert ds.sizes["point"] == 5 + 4  # distinct points of mass1 and mass2
@@ -195,7 +203,7 @@ from pathlib import Path
 import mbds.data.history as H
 from mbds.simulation.version_run import RunOptions, run_version
 
-def stall(state):
+def stall(*args):
     Path({str(marker)!r}).touch()
     time.sleep(60)
 
