@@ -74,21 +74,25 @@ def progress_bar(console: Console) -> Progress:
 
 @contextlib.contextmanager
 def interrupt_flag():
-    """A flag set by the first Ctrl-C (a second one interrupts at once)."""
+    """A flag set by the first Ctrl-C or SIGTERM (a second one acts at once, as without it)."""
     flag = threading.Event()
     if threading.current_thread() is not threading.main_thread():
         yield flag
         return
+    previous = {}
 
     def handler(signum, frame):
         flag.set()
-        signal.signal(signal.SIGINT, previous)
+        for number, action in previous.items():
+            signal.signal(number, action)
 
-    previous = signal.signal(signal.SIGINT, handler)
+    for number in (signal.SIGINT, signal.SIGTERM):
+        previous[number] = signal.signal(number, handler)
     try:
         yield flag
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for number, action in previous.items():
+            signal.signal(number, action)
 
 
 def print_run_summary(r: RunRecord, folder: Path, wall: float, console: Console) -> None:

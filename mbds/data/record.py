@@ -1,4 +1,5 @@
-"""Everything the output files of one run hold, computed once from the run's result."""
+"""What the output files of one run hold: its header, known when it starts; its samples, turned
+into series part after part as the run makes them; its summary, made when it ends."""
 
 from __future__ import annotations
 
@@ -8,13 +9,20 @@ from pathlib import Path
 import numpy as np
 
 from mbds.data.poses import body_poses, dependent_series
-from mbds.data.watches import WatchSeries, distinct_points, smooth_points, watch_series
+from mbds.data.watches import (
+    IMPULSE_COLUMNS,
+    WatchCarry,
+    WatchSeries,
+    distinct_points,
+    smooth_points,
+    watch_series,
+)
 from mbds.io.coordinates import CoordinateName
 from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
 from mbds.model.bodies import FIXED, Body
 from mbds.model.load import Model
-from mbds.simulation.run import RunResult, RunState
+from mbds.simulation.run import RunResult, RunState, Samples
 
 COUNTERS = {
     "steps": K.STEPS,
@@ -26,17 +34,15 @@ COUNTERS = {
 LENGTH_COORDINATES = ("x", "y", "z")
 
 
-@dataclass
-class RunRecord:
-    """One run of a model version, ready to be written.
+@dataclass(kw_only=True)
+class RunHeader:
+    """What the outputs of one run of a model version hold that is known before it starts.
 
-    Times in s; ``lost_work``/``driver_work`` (J) count from the start of this run, as do the
-    per-point losses (J, distinct shape points of all bodies, see ``point_body``) and the
-    ``counters``; ``max_penetration`` (m) is the largest since the chain of runs began;
-    ``final_state`` is the exact kernel state at ``end_time``. ``dependent_position`` (samples,
-    dependent) holds the ``.dc`` coordinates, ``pose`` (samples, bodies, 3) every body's x, y (m)
-    and Rz (rad); ``watch_body``/``watch_points`` the body and first and last point of each watch;
-    ``body_kind`` is moving, fixed or virtual and ``body_color`` its RGBColor (0-1); ``wall_time`` (s) how long the run took.
+    ``coordinates``/``dependent`` with their UDUNITS units; ``watch_body``/``watch_points`` the
+    body and first and last point of each watch; ``body_kind`` is moving, fixed or virtual and
+    ``body_color`` its RGBColor (0-1); ``point_body``/``point_number``/``shape`` (m) the distinct
+    shape points of all bodies; ``options`` the watch options; ``inputs`` the model files' text;
+    ``start_time``/``break_time`` (s).
     """
 
     model: str
@@ -44,25 +50,44 @@ class RunRecord:
     seed: int
     coordinates: list[str]
     coordinate_units: list[str]
-    time: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    energy: np.ndarray
-    lost_work: np.ndarray
-    driver_work: np.ndarray
+    dependent: list[str]
+    dependent_units: list[str]
     watch_labels: list[str]
     watch_absolute: np.ndarray
-    watches: WatchSeries
+    watch_body: list[str]
+    watch_points: list[tuple[int, int]]
     bodies: list[str]
+    body_kind: list[str]
+    body_color: np.ndarray
     point_body: np.ndarray
     point_number: np.ndarray
     shape: np.ndarray
-    point_lost_work: np.ndarray
-    point_lost_work_smoothed: np.ndarray
+    options: dict[str, float]
+    inputs: dict[str, str]
     start_time: float
-    end_time: float
     break_time: float
+    continued_from: int | None = None
+
+    @property
+    def force(self) -> bool:
+        """Whether the watches write forces (N) rather than impulses (N s)."""
+        return bool(self.options["convert_impulse_to_force"])
+
+
+@dataclass(kw_only=True)
+class RunRecord(RunHeader):
+    """One run of a model version, ended: its header and its summary. (The samples went to the
+    output files as the run made them.)
+
+    Times in s; ``run_lost_work``/``run_driver_work`` (J) and the ``counters`` count from the
+    start of this run, as do the per-point losses (J, distinct shape points of all bodies);
+    ``max_penetration`` (m) is the largest since the chain of runs began; ``final_state`` is the
+    exact kernel state at ``end_time``; ``first_sample``/``last_sample`` the times of the first
+    and last history samples and ``samples`` their number; ``wall_time`` (s) how long the run
+    took.
+    """
+
+    end_time: float
     stopped: str
     start_energy: float
     end_energy: float
@@ -71,18 +96,12 @@ class RunRecord:
     counters: dict[str, int]
     max_penetration: float
     final_state: RunState
-    options: dict[str, float]
-    watch_body: list[str] = field(default_factory=list)
-    watch_points: list[tuple[int, int]] = field(default_factory=list)
-    dependent: list[str] = field(default_factory=list)
-    dependent_units: list[str] = field(default_factory=list)
-    dependent_position: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
-    pose: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 3)))
-    body_kind: list[str] = field(default_factory=list)
-    body_color: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    inputs: dict[str, str] = field(default_factory=dict)
+    point_lost_work: np.ndarray
+    point_lost_work_smoothed: np.ndarray
+    first_sample: float
+    last_sample: float
+    samples: int
     wall_time: float = float("nan")
-    continued_from: int | None = None
     alerts: list[str] = field(default_factory=list)
 
     @property
@@ -93,6 +112,40 @@ class RunRecord:
     def energy_residual(self) -> float:
         """E(end) - E(start) + lost work - driver work (J); 0 up to integration error."""
         return self.end_energy - self.start_energy + self.run_lost_work - self.run_driver_work
+
+
+@dataclass
+class SampleSeries:
+    """The history samples of part of a run: time (s), q, qd, qdd (samples, coordinates),
+    mechanical energy, lost and driver work since the run's start (J), the watch outputs, the
+    dependent coordinates (samples, dependent) and every body's pose (samples, bodies, x m,
+    y m, Rz rad)."""
+
+    time: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    energy: np.ndarray
+    lost_work: np.ndarray
+    driver_work: np.ndarray
+    watches: WatchSeries
+    dependent_position: np.ndarray
+    pose: np.ndarray
+
+
+def empty_series(header: RunHeader) -> SampleSeries:
+    """Series of no sample, with the columns of ``header``'s run."""
+    n, m, nb, nw = len(header.coordinates), len(header.dependent), len(header.bodies), len(header.watch_labels)
+    z = np.zeros
+    options = header.options
+    watches = WatchSeries(
+        {name: z((0, nw)) for name in IMPULSE_COLUMNS},
+        None if options["angle_instead_of_work"] else z((0, nw)),
+        z((0, nw)) if options["angle_instead_of_work"] else None,
+        z((0, nw)) if options["averaged_t_div_n"] else None,
+        header.force,
+    )
+    return SampleSeries(z(0), z((0, n)), z((0, n)), z((0, n)), z(0), z(0), z(0), watches, z((0, m)), z((0, nb, 3)))
 
 
 def coordinate_label(name: CoordinateName) -> str:
@@ -107,59 +160,31 @@ def coordinate_unit(name: CoordinateName) -> str:
     return "m" if name.coordinate in LENGTH_COORDINATES else "rad"
 
 
-def make_record(
-    model: Model, result: RunResult, start: RunState, *, seed: int, break_time: float,
-    continued_from: int | None = None, folder: Path | None = None,
-) -> RunRecord:
-    """The record of ``result``, a run of ``model`` from ``start`` (a copy of the state it
-    started from) to ``break_time`` (s); ``folder`` holds the input files to keep."""
+def make_header(model: Model, start: RunState, *, seed: int, break_time: float,
+                continued_from: int | None = None, folder: Path | None = None) -> RunHeader:
+    """The header of a run of ``model`` from ``start`` to ``break_time`` (s); ``folder`` holds
+    the input files to keep."""
     arrays = flatten(model)
-    compiled = model.compile()
-    end = result.state
     counts = np.diff(arrays.point_start) - 1
-    starts = np.concatenate([[0], np.cumsum(counts)])
-    point_loss = distinct_points(end.point_loss - start.point_loss, arrays.point_start)
     common = model.files.watches.common
-    t0 = float(start.clock[K.T])
-    intervals = np.diff(result.time, prepend=t0)
-
-    def energy(state: RunState) -> float:
-        return float(compiled.mechanical_energy(state.q, state.u, state.clock[K.T], arrays.parameters))
-
-    dependent = dependent_series(compiled, arrays.parameters, result.time, result.q, result.u, result.a)
-    return RunRecord(
+    return RunHeader(
         model=model.name,
         version=model.version,
         seed=seed,
         coordinates=[coordinate_label(c) for c in model.coordinates],
         coordinate_units=[coordinate_unit(c) for c in model.coordinates],
-        time=result.time,
-        q=result.q,
-        qd=result.u,
-        qdd=result.a,
-        energy=result.energy,
-        lost_work=result.lost - start.clock[K.LOST],
-        driver_work=result.drive - start.clock[K.DRIVE_WORK],
+        dependent=[coordinate_label(c) for c in model.dependent],
+        dependent_units=[coordinate_unit(c) for c in model.dependent],
         watch_labels=[w.label for w in model.watches],
         watch_absolute=np.array([w.absolute for w in model.watches], dtype=bool),
-        watches=watch_series(result.watches, intervals, common),
+        watch_body=[model.bodies[w.body].name for w in model.watches],
+        watch_points=[(w.points[0], w.points[-1]) for w in model.watches],
         bodies=[b.name for b in model.bodies],
+        body_kind=[body_kind(b) for b in model.bodies],
+        body_color=np.array([body_color(f.main.rgb_color) for f in model.files.bodies]).reshape(-1, 3),
         point_body=np.repeat(np.arange(len(counts)), counts),
         point_number=np.concatenate([np.arange(c) for c in counts]) if len(counts) else np.zeros(0, int),
         shape=np.concatenate([b.points[:-1] for b in model.bodies]),
-        point_lost_work=point_loss,
-        point_lost_work_smoothed=smooth_points(point_loss, starts, common.smooth_work_left_right),
-        start_time=t0,
-        end_time=float(end.clock[K.T]),
-        break_time=break_time,
-        stopped=result.stopped,
-        start_energy=energy(start),
-        end_energy=energy(end),
-        run_lost_work=float(end.clock[K.LOST] - start.clock[K.LOST]),
-        run_driver_work=float(end.clock[K.DRIVE_WORK] - start.clock[K.DRIVE_WORK]),
-        counters={name: int(end.clock[i] - start.clock[i]) for name, i in COUNTERS.items()},
-        max_penetration=float(end.clock[K.MAX_PENETRATION]),
-        final_state=end,
         options={
             "time_constant": common.time_constant,
             "convert_impulse_to_force": int(common.convert_impulse_to_force),
@@ -168,16 +193,74 @@ def make_record(
             "angle_instead_of_work": int(common.absolute_angle_instead_of_work),
             "smooth_work_left_right": common.smooth_work_left_right,
         },
-        watch_body=[model.bodies[w.body].name for w in model.watches],
-        watch_points=[(w.points[0], w.points[-1]) for w in model.watches],
-        dependent=[coordinate_label(c) for c in model.dependent],
-        dependent_units=[coordinate_unit(c) for c in model.dependent],
-        dependent_position=dependent.position,
-        pose=body_poses(arrays, result.q, dependent.position),
-        body_kind=[body_kind(b) for b in model.bodies],
-        body_color=np.array([body_color(f.main.rgb_color) for f in model.files.bodies]).reshape(-1, 3),
         inputs=_inputs(model, folder),
+        start_time=float(start.clock[K.T]),
+        break_time=break_time,
         continued_from=continued_from,
+    )
+
+
+class SeriesMaker:
+    """Turns the kernel's samples of a run of ``model`` from ``start``, part after part, into
+    :class:`SampleSeries`; the watch options that run over samples (decay, cumulative work,
+    T/N ratio) carry on from one part to the next, so the series do not depend on the parts."""
+
+    def __init__(self, model: Model, start: RunState):
+        self.arrays = flatten(model)
+        self.compiled = model.compile()
+        self.common = model.files.watches.common
+        self.start = start
+        self.previous_time = float(start.clock[K.T])
+        self.carry = WatchCarry()
+
+    def __call__(self, samples: Samples) -> SampleSeries:
+        intervals = np.diff(samples.time, prepend=self.previous_time)
+        if len(samples.time):
+            self.previous_time = float(samples.time[-1])
+        dependent = dependent_series(self.compiled, self.arrays.parameters, samples.time, samples.q, samples.u,
+                                     samples.a)
+        return SampleSeries(
+            time=samples.time, q=samples.q, qd=samples.u, qdd=samples.a, energy=samples.energy,
+            lost_work=samples.lost - self.start.clock[K.LOST],
+            driver_work=samples.drive - self.start.clock[K.DRIVE_WORK],
+            watches=watch_series(samples.watches, intervals, self.common, self.carry),
+            dependent_position=dependent.position,
+            pose=body_poses(self.arrays, samples.q, dependent.position),
+        )
+
+
+def make_record(header: RunHeader, model: Model, result: RunResult, start: RunState, sampled: tuple[float, float, int]
+                ) -> RunRecord:
+    """The record of ``result``, the run of ``model`` from ``start`` (a copy of the state it
+    started from) that ``header`` describes; ``sampled``: the times of its first and last
+    samples (s) and their number."""
+    arrays = flatten(model)
+    compiled = model.compile()
+    end = result.state
+    counts = np.diff(arrays.point_start) - 1
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    point_loss = distinct_points(end.point_loss - start.point_loss, arrays.point_start)
+
+    def energy(state: RunState) -> float:
+        return float(compiled.mechanical_energy(state.q, state.u, state.clock[K.T], arrays.parameters))
+
+    first, last, samples = sampled
+    return RunRecord(
+        **vars(header),
+        end_time=float(end.clock[K.T]),
+        stopped=result.stopped,
+        start_energy=energy(start),
+        end_energy=energy(end),
+        run_lost_work=float(end.clock[K.LOST] - start.clock[K.LOST]),
+        run_driver_work=float(end.clock[K.DRIVE_WORK] - start.clock[K.DRIVE_WORK]),
+        counters={name: int(end.clock[i] - start.clock[i]) for name, i in COUNTERS.items()},
+        max_penetration=float(end.clock[K.MAX_PENETRATION]),
+        final_state=end,
+        point_lost_work=point_loss,
+        point_lost_work_smoothed=smooth_points(point_loss, starts, header.options["smooth_work_left_right"]),
+        first_sample=first,
+        last_sample=last,
+        samples=samples,
     )
 
 

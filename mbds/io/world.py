@@ -22,7 +22,6 @@ from mbds.io.ini import (
 )
 from mbds.io.text import significant_lines
 
-
 GENERALIZED_START = "generalizedStart"
 
 

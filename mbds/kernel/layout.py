@@ -11,16 +11,18 @@ from collections import namedtuple
 
 import numpy as np
 
-# settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags
+# settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags; the passes
+# of the step loop one call of advance may make before it returns (so callers look at Ctrl-C,
+# time limits and progress at least that often)
 DT_MIN, DT_MAX, MAX_PEN, ZERO_VELOCITY, PIVOT_MIN, PIVOT_MAX, LEXICO, LEXICO_LOW, LEXICO_HIGH = range(9)
-GO_BACK, SAMPLE_EVERY, SAMPLE_AT_COLLISION, SAMPLE_EACH_STEP, MAX_PIVOTS, SETTINGS = range(9, 15)
+GO_BACK, SAMPLE_EVERY, SAMPLE_AT_COLLISION, SAMPLE_EACH_STEP, MAX_PIVOTS, PASSES_PER_CALL, SETTINGS = range(9, 16)
 
 # clock array: time and step (s), counters, lost and drive work (J), penetrations (m)
 T, DT, NEXT_SAMPLE, STEPS, IMPACTS, REJECTED, LOST, DRIVE_WORK, MAX_PENETRATION = range(9)
 LCP_FAILURES, OVER_PENETRATIONS, LAST_PENETRATION, CLOCK = range(9, 13)
 
 # statuses of advance
-REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE = range(5)
+REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE, PASSES_DONE = range(6)
 
 # event codes (events array rows: time, code, value, value)
 EVENT_LCP_RAY, EVENT_LCP_MAX_PIVOTS, EVENT_LCP_FAILURE, EVENT_OVER_PENETRATION, EVENT_BAD_LAW, EVENT_SINGULAR_MASS = range(6)

@@ -73,6 +73,8 @@ from mbds.kernel.layout import (
     NEXT_SAMPLE,
     NOT_FINITE,
     OVER_PENETRATIONS,
+    PASSES_DONE,
+    PASSES_PER_CALL,
     REACHED,
     REJECTED,
     SAMPLE_AT_COLLISION,
@@ -103,7 +105,11 @@ def advance(
     bodies, contacts, rows, dyn, pb, forces, back = ws
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
+    passes = 0.0
     while True:
+        passes += 1.0
+        if passes > settings[PASSES_PER_CALL]:  # the loop resumes here on the next call, unchanged
+            return PASSES_DONE
         t = clock[T]
         for k in range(n):
             if not (np.isfinite(q[k]) and np.isfinite(u[k])):

@@ -79,9 +79,8 @@ def test_mbds_run_and_mbds_job_refuse_a_locked_folder(tmp_path):
     from typer.testing import CliRunner
 
     from mbds.cli.main import app
-    from tests.examples import copy_example
-
     from mbds.simulation.versions import ensure_version
+    from tests.examples import copy_example
 
     folder = copy_example("2mass", tmp_path / "2mass")
     ensure_version(folder, 0, folder / "2mass.wld")

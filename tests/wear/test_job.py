@@ -17,8 +17,8 @@ from typer.testing import CliRunner
 
 from mbds.cli.main import app
 from mbds.data.history import read_attributes, read_point_losses
-from mbds.io.lock import LOCK_FILE
 from mbds.io.folder import read_model_files
+from mbds.io.lock import LOCK_FILE
 from mbds.model.geometry import polygon_properties
 from mbds.wear.version import WEAR_FILE
 from tests.examples import copy_example
