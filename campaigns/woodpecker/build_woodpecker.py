@@ -7,8 +7,9 @@ fixed stick; the bird (Rz) hangs from the ring on a torsional spring. The equati
 are those of Slavič and Boltežar (2006): kinetic and potential energy linearised in the two
 angles, the bird's centre at height y + lM Rz_ring + lG Rz_bird. Where the bird's outline is
 for contacts is a separate choice, :data:`BIRD_POSITIONS`: ``exact`` places its centre on the
-two arms (lM cos + lG cos, y + lM sin + lG sin), as the example's ``woodpecker.dc`` does;
-``small-angle`` uses the same linearisation as the energies. Further variants are one entry
+two arms (lM cos + lG cos, y + lM sin + lG sin); ``small-angle`` uses the same linearisation as
+the energies; ``beak`` places it so that the beak tip (-lS, hS) follows the small-angle
+kinematics of the reference while the outline rotates exactly. Further variants are one entry
 of that table.
 """
 
@@ -36,14 +37,25 @@ def _rectangle(x0, x1, y0, y1) -> np.ndarray:
     return shapes.polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
 
 
-BIRD_POSITIONS = {
-    "exact": lambda ring, bird, lM, lG: (
-        lM * sympy.cos(ring.Rz) + lG * sympy.cos(bird.Rz),
-        ring.y + lM * sympy.sin(ring.Rz) + lG * sympy.sin(bird.Rz),
-    ),
-    "small-angle": lambda ring, bird, lM, lG: (lM + lG, ring.y + lM * ring.Rz + lG * bird.Rz),
-}
-"""The bird's centre (x, y) (m) as a function of the ring and bird bodies and the arms lM, lG."""
+def _exact(mb, ring, bird, lM, lG):
+    return (lM * sympy.cos(ring.Rz) + lG * sympy.cos(bird.Rz),
+            ring.y + lM * sympy.sin(ring.Rz) + lG * sympy.sin(bird.Rz))
+
+
+def _small_angle(mb, ring, bird, lM, lG):
+    return lM + lG, ring.y + lM * ring.Rz + lG * bird.Rz
+
+
+def _beak(mb, ring, bird, lM, lG):
+    hS = mb.constant("hS", 0.02)  # beak tip above the bird's centre (m)
+    lS = mb.constant("lS", 0.0201)  # beak tip behind the bird's centre (m)
+    c, s = sympy.cos(bird.Rz), sympy.sin(bird.Rz)
+    return lM + lG - lS * (1 - c), ring.y + lM * ring.Rz + lG * bird.Rz + hS * (1 - c) - lS * (bird.Rz - s)
+
+
+BIRD_POSITIONS = {"exact": _exact, "small-angle": _small_angle, "beak": _beak}
+"""The bird's centre (x, y) (m) from the builder, the ring and bird bodies and the arms lM, lG
+(a variant may declare constants of its own)."""
 
 
 def build(folder: Path, bird_position: str = "exact") -> Path:
@@ -64,7 +76,7 @@ def build(folder: Path, bird_position: str = "exact") -> Path:
                    thickness=0.005, color=(1, 1, 0), position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
 
     mb.generalized(ring.y, ring.Rz, bird.Rz)
-    bird_x, bird_y = BIRD_POSITIONS[bird_position](ring, bird, lM, lG)
+    bird_x, bird_y = BIRD_POSITIONS[bird_position](mb, ring, bird, lM, lG)
     mb.dependent(bird.x, bird_x)
     mb.dependent(bird.y, bird_y)
 

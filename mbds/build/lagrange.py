@@ -62,31 +62,46 @@ class Equations:
 
 
 class _States:
-    """Plain symbols for q, q̇, q̈ of the generalized coordinates, and the maps both ways."""
+    """Plain symbols for q, q̇, q̈ of the generalized coordinates and for the fixed body
+    coordinates (whose derivatives are 0), and the maps both ways."""
 
-    def __init__(self, coordinates: list[sympy.Expr]):
+    def __init__(self, coordinates: list[sympy.Expr], fixed: list[sympy.Expr]):
         self.q = [sympy.Symbol(f"q{k}", real=True) for k in range(len(coordinates))]
         self.qd = [sympy.Symbol(f"qd{k}", real=True) for k in range(len(coordinates))]
         self.qdd = [sympy.Symbol(f"qdd{k}", real=True) for k in range(len(coordinates))]
+        self.fixed = {sympy.Symbol(f"fixed{k}", real=True): f for k, f in enumerate(fixed)}
         self.to_symbols, self.to_functions = {}, {}
         for c, q, qd, qdd in zip(coordinates, self.q, self.qd, self.qdd):
             for f, s in ((sympy.Derivative(c, (S.T, 2)), qdd), (sympy.Derivative(c, S.T), qd), (c, q)):
                 self.to_symbols[f] = s
                 self.to_functions[s] = f
+        for s, f in self.fixed.items():
+            self.to_symbols.update({sympy.Derivative(f, (S.T, 2)): 0, sympy.Derivative(f, S.T): 0, f: s})
+            self.to_functions[s] = f
 
     def symbols(self, expr: sympy.Expr) -> sympy.Expr:
-        return expr.xreplace(self.to_symbols)
+        return sympy.sympify(expr).xreplace(self.to_symbols)
 
     def functions(self, expr: sympy.Expr) -> sympy.Expr:
-        return expr.xreplace(self.to_functions)
+        return sympy.sympify(expr).xreplace(self.to_functions)
+
+    def rate(self, expr: sympy.Expr) -> sympy.Expr:
+        """The time derivative of an expression in these symbols."""
+        return sympy.diff(expr, S.T) + sympy.Add(*(
+            sympy.diff(expr, q) * qd + sympy.diff(expr, qd) * qdd for q, qd, qdd in zip(self.q, self.qd, self.qdd)
+        ))
 
 
 def tidy(expr: sympy.Expr) -> sympy.Expr:
-    """Expanded, sin² + cos² collected, common factors pulled out."""
-    expr = sympy.expand(expr)
-    if expr.has(sympy.sin, sympy.cos):
-        expr = sympy.trigsimp(expr)
-    return sympy.factor_terms(expr)
+    """``expr`` as derived, with the factors common to its terms and to the sums inside each
+    term pulled out (-½k(2a - 2b) is -k(a - b), -g m1 - g m2 is -g(m1 + m2)), and sin² + cos² = 1
+    applied where it shortens it; energies written like the hand-made files thus give the same
+    expressions."""
+    expr = sympy.factor_terms(sympy.Add(*(sympy.factor_terms(term) for term in sympy.Add.make_args(expr))))
+    if not expr.has(sympy.sin, sympy.cos):
+        return expr
+    simpler = sympy.factor_terms(sympy.trigsimp(sympy.expand(expr)))
+    return simpler if sympy.count_ops(simpler) < sympy.count_ops(expr) else expr
 
 
 def derive_equations(d: Declarations) -> Equations:
@@ -96,8 +111,8 @@ def derive_equations(d: Declarations) -> Equations:
     if not d.kinetic:
         raise ModelError("no kinetic energy declared (builder.kinetic_energy(...))")
     coordinates = [c for c, _ in d.coordinates]
-    states = _States(coordinates)
     definitions = _resolve_dependent(d, coordinates)
+    states = _States(coordinates, _fixed(d, definitions))
 
     def expanded(term: Term, what: str, variations: bool = False) -> sympy.Expr:
         _check_names(term.expr, d, definitions, term.where, what, variations)
@@ -121,11 +136,11 @@ def derive_equations(d: Declarations) -> Equations:
             sympy.diff(kinetic, states.q[i]) - sympy.diff(potential, states.q[i]) + forces[i]
             - sympy.diff(dissipation, states.qd[i]) - coupling - sympy.diff(momenta[i], S.T)
         )
-    values = _values(d)
+    values = _values(d, states)
     q0, qd0 = _start_state(d, coordinates)
     _check_regular(mass, states, q0, values, d)
     dependent = [
-        _dependent_equations(c, definitions[c], coordinates, states, q0, qd0, values)
+        _dependent_equations(c, definitions[c], states, q0, qd0, values)
         for c, _, _ in d.dependent
     ]
     return Equations(
@@ -172,6 +187,7 @@ def _check_names(expr, d: Declarations, dependent, where: Location, what: str, v
         if body.virtual_to is None:
             allowed |= {body.m, body.Jzz}
     moving = {c for c, _ in d.coordinates} | set(dependent)
+    fixed = set(_fixed(d, dependent))
     if variations:
         allowed |= {variation(c) for c in moving}
     for s in sorted(expr.free_symbols - allowed, key=str):
@@ -185,17 +201,27 @@ def _check_names(expr, d: Declarations, dependent, where: Location, what: str, v
         else:
             message = f"undefined symbol '{s}'"
         raise ModelError(f"{what}: {message}", *where)
-    for f in sorted(expr.atoms(AppliedUndef) - moving, key=str):
+    for f in sorted(expr.atoms(AppliedUndef) - moving - fixed, key=str):
         ref = S.reference(f)
         if ref is None:
             message = f"undefined function '{f}'"
         elif ref.kind == "coordinate" and ref.body not in d.bodies:
             message = f"{S.display(f)}: no body '{ref.body}' is declared"
+        elif ref.kind == "coordinate" and d.bodies[ref.body].virtual_to is not None:
+            message = f"{S.display(f)} belongs to a virtual body, which has no coordinates"
         else:
-            message = f"{S.display(f)} is neither a generalized nor a dependent coordinate (a fixed one is a constant here)"
+            message = f"{S.display(f)} is neither a generalized nor a dependent coordinate"
         raise ModelError(f"{what}: {message}", *where)
     if S.derivative_order(expr) > 1:
         raise ModelError(f"{what} may not use accelerations", *where)
+
+
+def _fixed(d: Declarations, dependent) -> list[sympy.Expr]:
+    """Body coordinates x, y, Rz of non-virtual bodies that are neither generalized nor
+    dependent: they stay at their start values (ground, walls, pivots)."""
+    moving = {c for c, _ in d.coordinates} | set(dependent)
+    every = [getattr(b, axis) for b in d.bodies.values() if b.virtual_to is None for axis in ("x", "y", "Rz")]
+    return [c for c in every if c not in moving]
 
 
 def _without_velocities(expr: sympy.Expr, states: _States, where: Location) -> sympy.Expr:
@@ -231,8 +257,12 @@ def _check_every_coordinate_moves(d, states, kinetic, potential, dissipation, fo
             raise ModelError(f"{S.display(c)} has no kinetic energy: its row of the mass matrix is zero", *where)
 
 
-def _values(d: Declarations) -> dict[sympy.Symbol, float]:
+def _values(d: Declarations, states: _States) -> dict[sympy.Symbol, float]:
+    """Constants, mass properties and fixed coordinates (their start values)."""
     values = {S.constant(n): v for n, (v, _) in d.constants.items()}
+    for symbol, f in states.fixed.items():
+        ref = S.reference(f)
+        values[symbol] = d.bodies[ref.body].position[("x", "y", "Rz").index(ref.name)]
     for body in d.bodies.values():
         if body.virtual_to is None:
             values[body.m], values[body.Jzz] = body.mass_values()
@@ -273,13 +303,12 @@ def _check_regular(mass, states: _States, q0, values, d: Declarations) -> None:
     )
 
 
-def _dependent_equations(c, position, coordinates, states: _States, q0, qd0, values) -> DependentEquations:
-    velocity = sympy.diff(position, S.T)
-    acceleration = sympy.diff(velocity, S.T)
-    jacobian = [states.functions(sympy.diff(states.symbols(position), q)) for q in states.q]
-    scalar = acceleration.subs({sympy.Derivative(q, (S.T, 2)): 0 for q in coordinates})
-    start = (
-        _at_start(states.symbols(position), states, q0, qd0, values),
-        _at_start(states.symbols(velocity), states, q0, qd0, values),
-    )
-    return DependentEquations(c, position, velocity, acceleration, jacobian, scalar, start)
+def _dependent_equations(c, position, states: _States, q0, qd0, values) -> DependentEquations:
+    position = states.symbols(position)
+    velocity = states.rate(position)
+    acceleration = states.rate(velocity)
+    jacobian = [sympy.diff(position, q) for q in states.q]
+    scalar = acceleration.xreplace({qdd: 0 for qdd in states.qdd})
+    start = (_at_start(position, states, q0, qd0, values), _at_start(velocity, states, q0, qd0, values))
+    f = states.functions
+    return DependentEquations(c, f(position), f(velocity), f(acceleration), [f(e) for e in jacobian], f(scalar), start)
