@@ -55,10 +55,11 @@ def test_energy_balance_closes(run):
 
 @pytest.mark.physics
 def test_the_bob_strikes_the_wall(run):
-    """The bob's centre (l1 cos θ1 + l2 cos θ2) comes to one radius from the wall's face and no
-    further than the allowed penetration, and the impact loses energy."""
+    """The bob's centre (l1 cos θ1 + l2 cos θ2) comes within a sample's travel (1 ms at about
+    1.5 m/s) of touching the wall, never beyond the 48-gon's inner radius r cos(π/48) plus the
+    allowed penetration, and the impact loses energy."""
     x = SCRIPT.L1 * np.cos(run.q[:, 0]) + SCRIPT.L2 * np.cos(run.q[:, 1])
-    assert x.max() == pytest.approx(SCRIPT.WALL_X - SCRIPT.RADIUS, abs=2e-5)
+    assert SCRIPT.WALL_X - SCRIPT.RADIUS - 2e-3 < x.max() < SCRIPT.WALL_X - SCRIPT.RADIUS * np.cos(np.pi / 48) + 1e-6
     assert run.lost[-1] > 0.01  # J; measured 0.0574
 
 
