@@ -154,6 +154,11 @@ class ModelBuilder:
         laws = {"friction": friction, "restitutionNormal": restitution_normal,
                 "restitutionTangent": restitution_tangent, "parameterNi": parameter_ni,
                 "initialTemperature": initial_temperature, "resistingPenetration": resisting_penetration}
+        allowed = {S.TEMP, S.VREL} | {S.constant(n) for n in self.declared.constants}
+        for key in ("friction", "restitutionNormal", "restitutionTangent", "parameterNi"):
+            unknown = sorted(S.display(s) for s in sympy.sympify(laws[key]).free_symbols - allowed)
+            if unknown:
+                raise ModelError(f"{key} uses {', '.join(unknown)}: only declared constants, temp and vRel", *where)
         self.declared.contacts.append(Contact(names[0], names[1], laws, where))
 
     def watch(self, body: Body | str, points: str = "all", *, direction_inside: int = 0,

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import sympy
 
-from mbds.build.declarations import Body, Declarations
+from mbds.build.declarations import Body, Contact, Declarations
 from mbds.build.lagrange import Equations
 from mbds.errors import ModelError
 from mbds.expr import symbols as S
@@ -39,7 +39,6 @@ def write_model(d: Declarations, eq: Equations, folder: Path, name: str) -> Path
 def model_files(d: Declarations, eq: Equations, world_path: Path) -> ModelFiles:
     """The :class:`ModelFiles` of a derived model, as :func:`mbds.io.folder.read_model_files`
     would return them for the written folder."""
-    text = _Text()
     world_settings = {"dependent_coordinates_file": "current.dc", **d.world}
     if "break_time" in world_settings:
         world_settings["break_time"] = Located(text(world_settings["break_time"], "breakTime"))
@@ -69,7 +68,7 @@ def model_files(d: Declarations, eq: Equations, world_path: Path) -> ModelFiles:
         mass_matrix=MatrixFile([[Located(text(e)) for e in row] for row in eq.mass_matrix]),
         h_vector=ExpressionsFile([Located(text(e)) for e in eq.h_vector]),
         energy=ExpressionsFile([Located(text(eq.energy))]),
-        contacts=ContactsFile([_contact(c, text) for c in d.contacts]),
+        contacts=ContactsFile([_contact(c) for c in d.contacts]),
         watches=WatchesFile(bodies=[
             BodyWatch(
                 w.body,
@@ -83,17 +82,15 @@ def model_files(d: Declarations, eq: Equations, world_path: Path) -> ModelFiles:
     )
 
 
-class _Text:
-    """MBDS text of numbers and expressions; ModelError naming what cannot be written."""
-
-    def __call__(self, value, what: str = "expression") -> str:
-        expr = sympy.sympify(value)
-        if expr.is_Number:
-            return format_number(float(expr))
-        try:
-            return mbds_text(expr)
-        except ValueError as error:
-            raise ModelError(f"{what} cannot be written to an MBDS file: {error}") from None
+def text(value, what: str = "expression") -> str:
+    """MBDS text of a number or an expression; ModelError naming what cannot be written."""
+    expr = sympy.sympify(value)
+    if expr.is_Number:
+        return format_number(float(expr))
+    try:
+        return mbds_text(expr)
+    except ValueError as error:
+        raise ModelError(f"{what} cannot be written to an MBDS file: {error}") from None
 
 
 def _name(c: sympy.Expr) -> CoordinateName:
@@ -129,7 +126,7 @@ def _body_file(b: Body, starts: dict[str, tuple[float, float]]) -> BodyFile:
     return BodyFile(main, mass, _pose(position), _pose(velocity))
 
 
-def _contact(c, text: _Text) -> ContactSection:
+def _contact(c: Contact) -> ContactSection:
     laws = c.laws
     law = ContactLaw(
         resisting_penetration=laws["resistingPenetration"],

@@ -111,6 +111,8 @@ def test_declaration_mistakes():
         mb.world(max_step=1e-5)  # bad world key
     with raises_at("unknown watch body", "watch names body 'nobody'"):
         mb.watch("nobody")  # unknown watch body
+    with raises_at("undeclared law constant", r"friction uses c'mu: only declared constants, temp and vRel"):
+        mb.contact(b, friction=sympy.Symbol("c`mu", real=True))  # undeclared law constant
 
 
 def test_velocity_in_potential_and_non_linear_virtual_work():
