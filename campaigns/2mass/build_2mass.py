@@ -14,6 +14,7 @@ from pathlib import Path
 from mbds.build import ModelBuilder
 from mbds.build import energies as E
 from mbds.build import shapes
+from mbds.build.script import run_build
 
 
 def build(folder: Path) -> Path:
@@ -40,4 +41,4 @@ def build(folder: Path) -> Path:
 
 if __name__ == "__main__":
     target = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent / "built"
-    print(build(target))
+    run_build(build, target)

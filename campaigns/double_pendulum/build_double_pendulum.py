@@ -21,6 +21,7 @@ import sympy
 from mbds.build import ModelBuilder
 from mbds.build import energies as E
 from mbds.build import shapes
+from mbds.build.script import run_build
 
 STEEL = 7850.0  # kg/m³
 THICKNESS = 0.01  # m
@@ -75,4 +76,4 @@ def build(folder: Path) -> Path:
 
 if __name__ == "__main__":
     target = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent
-    print(build(target))
+    run_build(build, target)

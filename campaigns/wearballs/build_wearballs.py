@@ -17,6 +17,7 @@ import sympy
 from mbds.build import ModelBuilder
 from mbds.build import energies as E
 from mbds.build import shapes
+from mbds.build.script import run_build
 
 BALLS = [  # radius (m), colour, start (x, y, Rz)
     (0.030, (1, 0, 0), (0.04, 0.037156, 0.0)),
@@ -66,4 +67,4 @@ def build(folder: Path) -> Path:
 
 if __name__ == "__main__":
     target = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent / "built"
-    print(build(target))
+    run_build(build, target)

@@ -24,6 +24,7 @@ import sympy
 from mbds.build import ModelBuilder
 from mbds.build import energies as E
 from mbds.build import shapes
+from mbds.build.script import run_build
 
 BIRD_OUTLINE = np.array([  # m, bird frame: tail, belly, beak, head, back
     [-0.0201, 0.02], [-0.013, 0.0186], [-0.012, 0.015], [-0.0115, 0.01], [-0.013, 0.005], [-0.0135, 0.0],
@@ -99,4 +100,4 @@ if __name__ == "__main__":
     parser.add_argument("folder", nargs="?", type=Path, default=Path(__file__).resolve().parent / "built")
     parser.add_argument("--bird", choices=sorted(BIRD_POSITIONS), default="exact")
     arguments = parser.parse_args()
-    print(build(arguments.folder, arguments.bird))
+    run_build(build, arguments.folder, arguments.bird)

@@ -1,6 +1,8 @@
 """Errors point at the declaration in the user's script that is wrong (file:line)."""
 
 import inspect
+import subprocess
+import sys
 
 import pytest
 import sympy
@@ -143,3 +145,19 @@ def test_error_from_a_script_is_a_located_cli_style_message(tmp_path):
     with pytest.raises(ModelError) as error:
         exec(compile(script.read_text(), str(script), "exec"), {})
     assert str(error.value).startswith(f"{script}:3: shape of body 'b':")
+
+
+def test_a_build_script_reports_its_error_with_exit_code_2(tmp_path):
+    script = tmp_path / "model.py"
+    script.write_text(
+        "from mbds.build import ModelBuilder, shapes\n"
+        "from mbds.build.script import run_build\n"
+        "def build(folder):\n"
+        "    mb = ModelBuilder()\n"
+        "    mb.body('b', shapes.polygon([(0, 0), (0, 1), (1, 1), (1, 0)]), mass=1, inertia=1)\n"
+        "run_build(build, 'unused')\n"
+    )
+    result = subprocess.run([sys.executable, str(script)], capture_output=True, text=True)
+    assert result.returncode == 2
+    assert result.stderr.startswith(f"error: {script}:5: shape of body 'b': the interior is on the right")
+    assert "Traceback" not in result.stderr

@@ -102,3 +102,16 @@ def test_runs_are_bit_identical(rebuilt, name, break_time):
         assert np.abs(ours.energy - theirs.energy).max() <= 1e-15 * np.abs(theirs.energy).max()
     else:
         assert np.array_equal(ours.energy, theirs.energy)
+
+
+@pytest.mark.parametrize("variant", ["exact", "small-angle", "beak"])
+def test_every_woodpecker_bird_position_builds_a_model_mbds_reads(tmp_path, variant):
+    script = load_script(CAMPAIGNS / "woodpecker" / "build_woodpecker.py")
+    script.build(tmp_path, variant)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = assemble_model(read_quietly(tmp_path))
+    assert [str(c) for c in model.dependent] == ["b'bird'x[t]", "b'bird'y[t]"]
+    if variant == "small-angle":  # y = y_ring + lM Rz_ring + lG Rz_bird: J = (1, lM, lG), j = 0
+        dc = read_quietly(tmp_path).dependent.coordinates[1]
+        assert [e.text for e in dc.jacobian] == ["1", "c'lM", "c'lG"] and dc.jacobian_scalar.text == "0"
