@@ -38,25 +38,15 @@ class Body:
     displacement_factor: float | None
     where: Location
 
-    @property
-    def x(self) -> sympy.Expr:
-        return S.body_coordinate(self.name, "x")
+    x: sympy.Expr = field(init=False, repr=False, compare=False)
+    y: sympy.Expr = field(init=False, repr=False, compare=False)
+    Rz: sympy.Expr = field(init=False, repr=False, compare=False)  # noqa: N815 (the manual's name)
+    m: sympy.Symbol = field(init=False, repr=False, compare=False)
+    Jzz: sympy.Symbol = field(init=False, repr=False, compare=False)  # noqa: N815 (the manual's name)
 
-    @property
-    def y(self) -> sympy.Expr:
-        return S.body_coordinate(self.name, "y")
-
-    @property
-    def Rz(self) -> sympy.Expr:  # noqa: N802 (the manual's name)
-        return S.body_coordinate(self.name, "Rz")
-
-    @property
-    def m(self) -> sympy.Symbol:
-        return S.mass_property(self.name, "m")
-
-    @property
-    def Jzz(self) -> sympy.Symbol:  # noqa: N802 (the manual's name)
-        return S.mass_property(self.name, "Jzz")
+    def __post_init__(self):
+        self.x, self.y, self.Rz = (S.body_coordinate(self.name, c) for c in ("x", "y", "Rz"))
+        self.m, self.Jzz = (S.mass_property(self.name, p) for p in ("m", "Jzz"))
 
     def point(self, px, py) -> tuple[sympy.Expr, sympy.Expr]:
         """World position (m) of the body-fixed point (px, py) (m, body frame)."""
