@@ -13,7 +13,7 @@ from mbds.expr import symbols as S
 from mbds.model.geometry import polygon_properties
 
 
-@dataclass
+@dataclass(eq=False)
 class Body:
     """A declared body. ``x``, ``y``, ``Rz`` are its coordinates (functions of t: m, m, rad),
     ``m`` and ``Jzz`` its mass (kg) and centroidal moment of inertia (kg m²) as symbols.
