@@ -31,8 +31,9 @@ class WorldSettings:
 
     decimal_separator: str = setting("decimalSeparator", "text", ".")
     working_directory: str = setting("workingDirectory", "text", "current")
+    # written in the manual's own spelling, the one the original program reads
     number_of_coordinates: int = setting(
-        "numberOfGeneralizedCoordinates", "integer", 1, "numberOfGeneralizedCoodinates"
+        "numberOfGeneralizedCoodinates", "integer", 1, "numberOfGeneralizedCoordinates"
     )
     lcp_pivot_tolerance_min: float = setting("LCPPivotToleranceMin", "number", 1e-14)
     lcp_pivot_tolerance_max: float = setting("LCPPivotToleranceMax", "number", 1e-10)
