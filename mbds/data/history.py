@@ -124,6 +124,9 @@ def series_variables(header: RunHeader, s: SampleSeries) -> dict[str, tuple[tupl
         out["angle"] = (tw, s.watches.angle, _cf("angle of the last contact normal to the x axis", "rad"))
     if s.watches.t_div_n is not None:
         out["t_div_n"] = (tw, s.watches.t_div_n, _cf("running ratio of summed tangential to normal impulse", "1"))
+    if s.watches.temperature is not None:
+        out["temperature"] = (tw, s.watches.temperature, _cf("contact temperature of the hottest watched point",
+                                                               "degree_Celsius"))
     return out
 
 
@@ -241,6 +244,8 @@ def read_final_state(path: str | Path) -> tuple[RunState, dict]:
             point_loss=ds["point_loss"].values.copy(),
             point_interval=ds["point_interval"].values.copy(),
         )
+    if state.point_interval.shape[1:] == (K.TEMP,):  # written before contact temperatures: none
+        state.point_interval = np.column_stack([state.point_interval, np.full(len(state.point_interval), np.nan)])
     if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
         raise ModelError("written by an incompatible mbds version (its state has another layout)", path)
     return state, read_attributes(path)

@@ -52,6 +52,8 @@ def watch_columns(header: RunHeader, w: WatchSeries) -> list[tuple[str, np.ndarr
         out.append((f"{label}-angle", w.angle[:, k]) if w.work is None else (f"{label}-work", w.work[:, k]))
         if w.t_div_n is not None:
             out.append((f"{label}-TdivN", w.t_div_n[:, k]))
+        if w.temperature is not None:
+            out.append((f"{label}-temperature", w.temperature[:, k]))
     return out
 
 

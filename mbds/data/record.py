@@ -144,6 +144,7 @@ def empty_series(header: RunHeader) -> SampleSeries:
         z((0, nw)) if options["angle_instead_of_work"] else None,
         z((0, nw)) if options["averaged_t_div_n"] else None,
         header.force,
+        z((0, nw)) if options["temperature"] else None,
     )
     return SampleSeries(z(0), z((0, n)), z((0, n)), z((0, n)), z(0), z(0), z(0), watches, z((0, m)), z((0, nb, 3)))
 
@@ -192,6 +193,7 @@ def make_header(model: Model, start: RunState, *, seed: int, break_time: float,
             "averaged_t_div_n": int(common.write_averaged_t_div_n),
             "angle_instead_of_work": int(common.absolute_angle_instead_of_work),
             "smooth_work_left_right": common.smooth_work_left_right,
+            "temperature": int(any(p.heated for p in model.pairs)),
         },
         inputs=_inputs(model, folder),
         start_time=float(start.clock[K.T]),
@@ -212,6 +214,7 @@ class SeriesMaker:
         self.start = start
         self.previous_time = float(start.clock[K.T])
         self.carry = WatchCarry()
+        self.heated = any(p.heated for p in model.pairs)
 
     def __call__(self, samples: Samples) -> SampleSeries:
         intervals = np.diff(samples.time, prepend=self.previous_time)
@@ -223,7 +226,7 @@ class SeriesMaker:
             time=samples.time, q=samples.q, qd=samples.u, qdd=samples.a, energy=samples.energy,
             lost_work=samples.lost - self.start.clock[K.LOST],
             driver_work=samples.drive - self.start.clock[K.DRIVE_WORK],
-            watches=watch_series(samples.watches, intervals, self.common, self.carry),
+            watches=watch_series(samples.watches, intervals, self.common, self.carry, self.heated),
             dependent_position=dependent.position,
             pose=body_poses(self.arrays, samples.q, dependent.position),
         )

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mbds.io.watches import CommonOptions
-from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, WORK
+from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, TEMP, WORK
 
 IMPULSE_COLUMNS = {"normal": IMP_N, "tangential": IMP_T, "x": IMP_X, "y": IMP_Y}
 
@@ -29,13 +29,16 @@ IMPULSE_COLUMNS = {"normal": IMP_N, "tangential": IMP_T, "x": IMP_X, "y": IMP_Y}
 @dataclass
 class WatchSeries:
     """Watch outputs over (sample, watch): ``impulse`` per direction (normal, tangential, x, y;
-    N s, or N for forces), ``work`` (J) or ``angle`` (rad) and ``t_div_n`` (None when not asked)."""
+    N s, or N for forces), ``work`` (J) or ``angle`` (rad), ``t_div_n`` and ``temperature``
+    (deg C, the hottest watched point; None when not asked, or when no contact pair has a
+    temperature model)."""
 
     impulse: dict[str, np.ndarray]
     work: np.ndarray | None
     angle: np.ndarray | None
     t_div_n: np.ndarray | None
     force: bool
+    temperature: np.ndarray | None = None
 
 
 @dataclass
@@ -49,11 +52,11 @@ class WatchCarry:
 
 
 def watch_series(sums: np.ndarray, intervals: np.ndarray, options: CommonOptions,
-                 carry: WatchCarry | None = None) -> WatchSeries:
+                 carry: WatchCarry | None = None, heated: bool = False) -> WatchSeries:
     """Apply ``options`` to ``sums`` (samples, watches, POINT_COLUMNS); ``intervals`` (samples,)
     are the sample intervals (s). With ``carry``, the samples continue those of the parts of the
     run that ``carry`` went through (and ``carry`` goes on to their end): a run's series are the
-    same whether made whole or in parts."""
+    same whether made whole or in parts. ``heated``: the model has contact temperatures."""
     carry = carry if carry is not None else WatchCarry()
     impulse = {}
     for name, column in IMPULSE_COLUMNS.items():
@@ -73,7 +76,8 @@ def watch_series(sums: np.ndarray, intervals: np.ndarray, options: CommonOptions
         work = _running_sum(work, carry, "work") if options.cumulative_work else work.copy()
     if options.write_averaged_t_div_n:
         t_div_n = running_ratio(_running_sum(sums[:, :, IMP_T], carry, "T"), _running_sum(sums[:, :, IMP_N], carry, "N"))
-    return WatchSeries(impulse, work, angle, t_div_n, options.convert_impulse_to_force)
+    temperature = sums[:, :, TEMP].copy() if heated else None
+    return WatchSeries(impulse, work, angle, t_div_n, options.convert_impulse_to_force, temperature)
 
 
 def _running_sum(values: np.ndarray, carry: WatchCarry, name: str) -> np.ndarray:

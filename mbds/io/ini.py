@@ -81,8 +81,9 @@ def find_section(sections: list[Section], name: str) -> Section | None:
 # --- declared settings ---------------------------------------------------------------------
 
 
-def setting(key: str, kind: str, default: Any, *aliases: str):
-    """A dataclass field read from ``key`` (or an alias), parsed as ``kind``.
+def setting(key: str, kind: str, default: Any, *aliases: str, extension: bool = False):
+    """A dataclass field read from ``key`` (or an alias), parsed as ``kind``; an ``extension``
+    (a key of mbds, not of the original program) is written only when it is not at its default.
 
     Kinds: ``number``, ``integer``, ``minutes`` (a number, or ``MaxInt``), ``flag``, ``text``, ``expression`` (kept as :class:`Located`
     text), ``pair`` (two numbers ``a,b``), ``list`` (comma-separated names), ``numbers``
@@ -90,8 +91,9 @@ def setting(key: str, kind: str, default: Any, *aliases: str):
     """
     if isinstance(default, (list, tuple)):
         factory = (lambda d=default: type(d)(d))
-        return field(default_factory=factory, metadata={"key": key, "kind": kind, "aliases": aliases})
-    return field(default=default, metadata={"key": key, "kind": kind, "aliases": aliases})
+        return field(default_factory=factory, metadata={"key": key, "kind": kind, "aliases": aliases,
+                                                         "extension": extension})
+    return field(default=default, metadata={"key": key, "kind": kind, "aliases": aliases, "extension": extension})
 
 
 def _parse_value(kind: str, entry: Entry, file, separator: str):
@@ -174,7 +176,7 @@ def format_settings(obj, separator: str = ".", *, skip_defaults: bool = False) -
         if "key" not in f.metadata:
             continue
         value = getattr(obj, f.name)
-        if skip_defaults and _is_default(f, value):
+        if (skip_defaults or f.metadata.get("extension")) and _is_default(f, value):
             continue
         lines.append(f"{f.metadata['key']} = {_format_value(f.metadata['kind'], value, separator)}")
     return lines

@@ -27,8 +27,12 @@ REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE, PASSES_DONE = range(6)
 # event codes (events array rows: time, code, value, value)
 EVENT_LCP_RAY, EVENT_LCP_MAX_PIVOTS, EVENT_LCP_FAILURE, EVENT_OVER_PENETRATION, EVENT_BAD_LAW, EVENT_SINGULAR_MASS = range(6)
 
-# columns of per-point accumulators: impulses (N s), lost work (J), contact angle (rad)
-IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, POINT_COLUMNS = range(7)
+# columns of per-point values: impulses (N s) and lost work (J) since the last sample, the last
+# contact angle (rad), the temperature (deg C; NaN where no contact pair has a temperature model)
+IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, TEMP, POINT_COLUMNS = range(8)
+
+# columns of the per-point heat model: heating (deg C per J), cooling rate (1/s), ambient (deg C)
+HEATING, COOLING, AMBIENT, HEAT_COLUMNS = range(4)
 
 # float columns of the per-contact records kept for going back (integer columns: vertex,
 # edge start and edge end points; the closing point of a shape is never used)
@@ -37,7 +41,7 @@ R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = rang
 ModelArrays = namedtuple(
     "ModelArrays",
     "binding binding_index start_pose carrier offset points point_start skin factor radius "
-    "pair_bodies pair_law pair_resisting pair_temperature watch_start watch_points p",
+    "pair_bodies pair_law pair_resisting pair_temperature pair_heated point_heat watch_start watch_points p",
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
@@ -64,9 +68,10 @@ Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
 phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
 
-Rollback = namedtuple("Rollback", "q u clock records_int records_float record_count last_sample")
-"""The starts of the last two steps (slot 1: the last, 0: the one before) and their contact
-records, for going back; the time of the last history sample (s)."""
+Rollback = namedtuple("Rollback", "q u clock temperature records_int records_float record_count last_sample")
+"""The starts of the last two steps (slot 1: the last, 0: the one before: coordinates, clock
+and point temperatures) and their contact records, for going back; the time of the last
+history sample (s)."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -99,7 +104,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     rollback = Rollback(
-        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
+        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, points)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
         np.full(2, -1, dtype=i), np.full(1, -np.inf),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)

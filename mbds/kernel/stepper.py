@@ -47,6 +47,7 @@ from mbds.kernel.detection import (
     world_points,
 )
 from mbds.kernel.events import log_event
+from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
 from mbds.kernel.kinematics import body_states, contact_kinematics
@@ -105,6 +106,7 @@ def advance(
     bodies, contacts, rows, dyn, pb, forces, back = ws
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
+    heated = model.pair_heated.any()
     passes = 0.0
     while True:
         passes += 1.0
@@ -130,7 +132,7 @@ def advance(
             penetration = max(penetration, -contacts.gap[i])
         if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[1] >= 0:
             if back.clock[1, DT] > settings[DT_MIN] * 1.000001:
-                go_back(1, q, u, clock, point_loss, point_interval, back)
+                go_back(1, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 clock[REJECTED] += 1.0
                 continue
@@ -145,7 +147,7 @@ def advance(
                 return HISTORY_FULL
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
-                contact_laws(contact_law, nc, contacts, model, rows, events, t)
+                contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
                 if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
                     return NOT_FINITE
                 contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
@@ -161,13 +163,13 @@ def advance(
             return REACHED
         if events.count[0] + 8 > events.data.shape[0]:
             return EVENTS_FULL
-        begin_step(q, u, clock, back)
+        begin_step(q, u, clock, point_interval, heated, back)
         if settings[LEXICO_HIGH] > 0.0:
             tol_lex = uniform(rng, settings[LEXICO_LOW], settings[LEXICO_HIGH])
         else:
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
-        contact_laws(contact_law, nc, contacts, model, rows, events, t)
+        contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
         if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
@@ -178,7 +180,7 @@ def advance(
                 impacting = True
         solved = True
         if impacting:
-            solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model.point_start,
+            solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
                             point_loss, point_interval, back, events, t)
             clock[IMPACTS] += 1.0
         # --- 5: forces between impacts
@@ -188,7 +190,7 @@ def advance(
         if not solved:
             clock[LCP_FAILURES] += 1.0
             if settings[GO_BACK] > 0.0 and back.record_count[0] >= 0 and back.clock[0, DT] > settings[DT_MIN] * 1.000001:
-                go_back(0, q, u, clock, point_loss, point_interval, back)
+                go_back(0, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 continue
         # --- 6: step size
@@ -202,6 +204,8 @@ def advance(
         # --- 7: Heun step with the contact set of step 5
         _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
               t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
+        if heated:
+            cool(model.point_heat, point_interval, dt)
         clock[STEPS] += 1.0
         if impacting and settings[SAMPLE_AT_COLLISION] > 0.0:
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
@@ -268,7 +272,7 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         drive -= lam_n[i] * what_n[i] + lam_t[i] * what_t[i]
         record(contacts, i, 0.5 * dt * (lam_n1[i] + lam_n[i]), 0.5 * dt * (lam_t1[i] + lam_t[i]),
                -0.5 * dt * (lam_n1[i] * gam_n[i] + lam_t1[i] * gam_t[i] + lam_n[i] * gd_n[i] + lam_t[i] * gd_t[i]),
-               model.point_start, point_loss, point_interval, back)
+               model, point_loss, point_interval, back)
     for k in range(n):
         q[k] += 0.5 * dt * (u[k] + u_star[k])
         u[k] += 0.5 * dt * (a1[k] + a2[k])

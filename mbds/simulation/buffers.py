@@ -17,7 +17,7 @@ def model_tuple(a: KernelArrays) -> K.ModelArrays:
     return K.ModelArrays(
         a.binding, a.binding_index, a.start_pose, a.carrier, a.offset, a.points, a.point_start, a.skin,
         a.displacement_factor, a.radius, a.pair_bodies, a.pair_law, a.pair_resisting, a.pair_temperature,
-        a.watch_start, a.watch_points, a.parameters,
+        a.pair_heated, a.point_heat, a.watch_start, a.watch_points, a.parameters,
     )
 
 

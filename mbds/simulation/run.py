@@ -10,7 +10,7 @@ import numpy as np
 
 from mbds.kernel import layout as K
 from mbds.kernel.random import seeded_state
-from mbds.model.arrays import flatten
+from mbds.model.arrays import KernelArrays, flatten
 from mbds.model.load import Model
 from mbds.simulation.buffers import (
     RunSettings,
@@ -88,8 +88,17 @@ def initial_state(model: Model, seed: int) -> RunState:
         u=arrays.qd0.copy(),
         rng=seeded_state(seed),
         point_loss=np.zeros(len(arrays.points)),
-        point_interval=np.zeros((len(arrays.points), K.POINT_COLUMNS)),
+        point_interval=initial_point_values(arrays),
     )
+
+
+def initial_point_values(arrays: KernelArrays) -> np.ndarray:
+    """The per-point values at the start: nothing summed yet, the temperature of points with a
+    heat model at its ambient, NaN elsewhere."""
+    values = np.zeros((len(arrays.points), K.POINT_COLUMNS))
+    heated = arrays.point_heat[:, K.HEATING] > 0.0
+    values[:, K.TEMP] = np.where(heated, arrays.point_heat[:, K.AMBIENT], np.nan)
+    return values
 
 
 def continue_from(state: RunState) -> None:

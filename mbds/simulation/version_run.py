@@ -9,6 +9,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from mbds.data.history import FILE_NAME, HistoryStream, read_final_state
 from mbds.data.legacy import (
     HEADER_LINES,
@@ -23,6 +25,7 @@ from mbds.io.folder import run_number, version_name
 from mbds.io.job import JobSettings
 from mbds.io.text import atomic_path
 from mbds.kernel import layout as K
+from mbds.model.arrays import flatten
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.run import (
@@ -30,6 +33,7 @@ from mbds.simulation.run import (
     RunStopped,
     Samples,
     continue_from,
+    initial_point_values,
     initial_state,
     simulate,
 )
@@ -143,4 +147,7 @@ def _start_state(model: Model, folder: Path, options: RunOptions) -> tuple[RunSt
     points = sum(len(b.points) for b in model.bodies)
     if state.point_loss.shape != (points,):
         raise ModelError(f"its run has {len(state.point_loss)} shape points, this model {points}", path)
+    start = initial_point_values(flatten(model))[:, K.TEMP]  # points heated now but not then start at ambient
+    unknown = np.isnan(state.point_interval[:, K.TEMP])
+    state.point_interval[unknown, K.TEMP] = start[unknown]
     return state, int(attrs.get("seed", options.seed))

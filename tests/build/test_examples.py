@@ -97,7 +97,7 @@ def _without_energy(source: str) -> str:
 def test_runs_are_bit_identical(rebuilt, name, break_time):
     ours, theirs = run_folder(rebuilt[name], break_time), run_folder(CAMPAIGNS / name, break_time)
     for field in ("time", "q", "u", "a", "lost", "drive", "watches", "events"):
-        assert np.array_equal(getattr(ours, field), getattr(theirs, field)), field
+        assert np.array_equal(getattr(ours, field), getattr(theirs, field), equal_nan=True), field
     if name == "woodpecker":
         assert np.abs(ours.energy - theirs.energy).max() <= 1e-15 * np.abs(theirs.energy).max()
     else:
