@@ -68,10 +68,14 @@ Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
 phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
 
+# slots of the rollback: the starts of the last three steps, LAST_SLOT the most recent
+ROLLBACK_SLOTS = 3
+LAST_SLOT = ROLLBACK_SLOTS - 1
+
 Rollback = namedtuple("Rollback", "q u clock temperature records_int records_float record_count last_sample")
-"""The starts of the last two steps (slot 1: the last, 0: the one before: coordinates, clock
-and point temperatures) and their contact records, for going back; the time of the last
-history sample (s)."""
+"""The starts of the last ROLLBACK_SLOTS steps (slot LAST_SLOT: the last, 0: the oldest:
+coordinates, clock and point temperatures) and their contact records, for going back (a record
+count of -1: the slot cannot be gone back to); the time of the last history sample (s)."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -103,9 +107,10 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
         f((c, n)), f(c, i), f(c, i), f(c, np.bool_), f(c), f(size * size), f(size), f(size), f(size), fwork, iwork,
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
+    s = ROLLBACK_SLOTS
     rollback = Rollback(
-        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, points)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
-        np.full(2, -1, dtype=i), np.full(1, -np.inf),
+        f((s, n)), f((s, n)), f((s, CLOCK)), f((s, points)), f((s, 2 * c, 3), i), f((s, 2 * c, RECORD_COLUMNS)),
+        np.full(s, -1, dtype=i), np.full(1, -np.inf),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)
 

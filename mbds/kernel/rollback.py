@@ -1,8 +1,9 @@
 """Per-point accumulators of a step's contacts, and going back to the start of a step.
 
 Contributions of a step (impulses, lost work) go to the shape points at once and are also
-kept as records, so that going back (``TryToSolveByGoingBack``, or a step rejected for
-penetration) can take them out again. Slot 1 holds the last step, slot 0 the one before.
+kept as records, so that going back (``TryToSolveByGoingBack``, two steps, or a step rejected for
+penetration, one) can take them out again. Slot LAST_SLOT holds the last step, the slots below it
+the steps before.
 """
 
 from __future__ import annotations
@@ -12,12 +13,14 @@ import numpy as np
 from mbds.kernel.jit import jit
 from mbds.kernel.layout import (
     ANGLE,
+    DT,
     HEATING,
     IMP_N,
     IMP_T,
     IMP_X,
     IMP_Y,
     IMPACTS,
+    LAST_SLOT,
     LCP_FAILURES,
     MAX_PENETRATION,
     OVER_PENETRATIONS,
@@ -29,6 +32,7 @@ from mbds.kernel.layout import (
     R_LOSS,
     R_XI,
     REJECTED,
+    ROLLBACK_SLOTS,
     STEPS,
     TEMP,
     WORK,
@@ -58,22 +62,22 @@ def record(contacts, i, imp_n, imp_t, loss, model, point_loss, point_interval, b
     _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, 1.0, point_heat, point_loss,
                  point_interval)
     records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
-    k = max(record_count[1], 0)
+    last = LAST_SLOT
+    k = max(record_count[last], 0)
     if k < records_int.shape[1]:
-        records_int[1, k, 0] = vertex
-        records_int[1, k, 1] = edge
-        records_int[1, k, 2] = edge_end
-        records_float[1, k, R_XI] = xi
-        records_float[1, k, R_IMP_N] = imp_n
-        records_float[1, k, R_IMP_T] = imp_t
-        records_float[1, k, R_IMP_X] = imp_x
-        records_float[1, k, R_IMP_Y] = imp_y
-        records_float[1, k, R_LOSS] = loss
-        records_float[1, k, R_ANGLE] = angle
-        record_count[1] = k + 1
+        records_int[last, k, 0] = vertex
+        records_int[last, k, 1] = edge
+        records_int[last, k, 2] = edge_end
+        records_float[last, k, R_XI] = xi
+        records_float[last, k, R_IMP_N] = imp_n
+        records_float[last, k, R_IMP_T] = imp_t
+        records_float[last, k, R_IMP_X] = imp_x
+        records_float[last, k, R_IMP_Y] = imp_y
+        records_float[last, k, R_LOSS] = loss
+        records_float[last, k, R_ANGLE] = angle
+        record_count[last] = k + 1
     else:  # no room to keep it: this step becomes final
-        record_count[1] = -1
-        record_count[0] = -1
+        forget_steps(back)
 
 
 @jit(inline="always")
@@ -120,42 +124,52 @@ def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle,
 
 @jit
 def begin_step(q, u, clock, point_interval, heated, back):
-    """Keep the start of this step (slot 1) and of the previous one (slot 0) for going back
-    (with the point temperatures when ``heated``)."""
+    """Keep the start of this step (slot LAST_SLOT), the starts of the steps before it moving one
+    slot down (with the point temperatures when ``heated``), for going back."""
     records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
-    if record_count[1] >= 0:
-        for k in range(record_count[1]):
-            for j in range(records_int.shape[2]):
-                records_int[0, k, j] = records_int[1, k, j]
-            for j in range(records_float.shape[2]):
-                records_float[0, k, j] = records_float[1, k, j]
-        for k in range(q.shape[0]):
-            back.q[0, k] = back.q[1, k]
-            back.u[0, k] = back.u[1, k]
-        for k in range(clock.shape[0]):
-            back.clock[0, k] = back.clock[1, k]
-        if heated:
-            for k in range(point_interval.shape[0]):
-                back.temperature[0, k] = back.temperature[1, k]
-    record_count[0] = record_count[1]
+    for s in range(LAST_SLOT):
+        count = record_count[s + 1]
+        if count >= 0:
+            for k in range(count):
+                for j in range(records_int.shape[2]):
+                    records_int[s, k, j] = records_int[s + 1, k, j]
+                for j in range(records_float.shape[2]):
+                    records_float[s, k, j] = records_float[s + 1, k, j]
+            for k in range(q.shape[0]):
+                back.q[s, k] = back.q[s + 1, k]
+                back.u[s, k] = back.u[s + 1, k]
+            for k in range(clock.shape[0]):
+                back.clock[s, k] = back.clock[s + 1, k]
+            if heated:
+                for k in range(point_interval.shape[0]):
+                    back.temperature[s, k] = back.temperature[s + 1, k]
+        record_count[s] = count
     for k in range(q.shape[0]):
-        back.q[1, k] = q[k]
-        back.u[1, k] = u[k]
+        back.q[LAST_SLOT, k] = q[k]
+        back.u[LAST_SLOT, k] = u[k]
     for k in range(clock.shape[0]):
-        back.clock[1, k] = clock[k]
+        back.clock[LAST_SLOT, k] = clock[k]
     if heated:
         for k in range(point_interval.shape[0]):
-            back.temperature[1, k] = point_interval[k, TEMP]
-    record_count[1] = 0
+            back.temperature[LAST_SLOT, k] = point_interval[k, TEMP]
+    record_count[LAST_SLOT] = 0
+
+
+@jit(inline="always")
+def forget_steps(back):
+    """No step kept can be gone back to (after a history sample, or a step whose records did not
+    fit)."""
+    for s in range(ROLLBACK_SLOTS):
+        back.record_count[s] = -1
 
 
 @jit
 def go_back(slot, q, u, clock, model, point_loss, point_interval, back):
-    """Return to the start of the step kept in ``slot`` (1: the last step, 0: the one before),
-    taking the records of the steps undone out of the accumulators and restoring the point
-    temperatures; counters keep counting."""
+    """Return to the start of the step kept in ``slot`` (LAST_SLOT: the last step, each slot below
+    one step earlier), taking the records of the steps undone out of the accumulators and
+    restoring the point temperatures; counters keep counting."""
     record_count = back.record_count
-    for s in range(1, slot - 1, -1):
+    for s in range(LAST_SLOT, slot - 1, -1):
         for k in range(max(record_count[s], 0)):
             _take_out(back.records_int, back.records_float, s, k, model.point_heat, point_loss, point_interval)
     if model.pair_heated.any():
@@ -171,6 +185,15 @@ def go_back(slot, q, u, clock, model, point_loss, point_interval, back):
         clock[k] = back.clock[slot, k]
     for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
         clock[c] = keep[j]
-    record_count[0] = -1
-    record_count[1] = -1
+    forget_steps(back)
 
+
+@jit(inline="always")
+def kept_slot(back, first, last, dt_min):
+    """The earliest slot from ``first`` to ``last`` that can be gone back to, or -1 when none
+    can or when its step was already minimumTimestep ``dt_min`` (s) long (going back would
+    change nothing)."""
+    for slot in range(first, last + 1):
+        if back.record_count[slot] >= 0:
+            return slot if back.clock[slot, DT] > dt_min * 1.000001 else -1
+    return -1

@@ -64,6 +64,7 @@ from mbds.kernel.layout import (
     HISTORY_FULL,
     IMPACTS,
     LAST_PENETRATION,
+    LAST_SLOT,
     LCP_FAILURES,
     LEXICO,
     LEXICO_HIGH,
@@ -86,7 +87,7 @@ from mbds.kernel.layout import (
     T,
 )
 from mbds.kernel.random import uniform
-from mbds.kernel.rollback import begin_step, go_back, record
+from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, record
 from mbds.kernel.sampling import sample
 
 
@@ -130,9 +131,9 @@ def advance(
         penetration = 0.0
         for i in range(nc):
             penetration = max(penetration, -contacts.gap[i])
-        if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[1] >= 0:
-            if back.clock[1, DT] > settings[DT_MIN] * 1.000001:
-                go_back(1, q, u, clock, model, point_loss, point_interval, back)
+        if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[LAST_SLOT] >= 0:
+            if kept_slot(back, LAST_SLOT, LAST_SLOT, settings[DT_MIN]) >= 0:  # the start of the last step
+                go_back(LAST_SLOT, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 clock[REJECTED] += 1.0
                 continue
@@ -155,8 +156,7 @@ def advance(
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
                    model.watch_points, history)
             back.last_sample[0] = t
-            back.record_count[0] = -1  # no going back past a sample
-            back.record_count[1] = -1
+            forget_steps(back)  # no going back past a sample
             # the next sample time as a multiple of the interval (no drift from repeated sums)
             clock[NEXT_SAMPLE] = (np.floor(t / settings[SAMPLE_EVERY] + 1e-9) + 1.0) * settings[SAMPLE_EVERY]
         if t >= until - 1e-12 * max(1.0, abs(until)):
@@ -174,9 +174,14 @@ def advance(
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
         # --- 4: impact
+        # a closed contact impacts when it approaches faster than ZeroVelocityTolerance, or when a
+        # slower approach would take it beyond maximumPenetration within a maximum step (else the
+        # step would shrink to minimumTimestep and stay there)
         impacting = False
         for i in range(nc):
-            if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] < -settings[ZERO_VELOCITY]:
+            gap, rate = contacts.gap[i], rows.gd_n[i]
+            if gap <= CLOSED_FRACTION * settings[MAX_PEN] and rate < 0.0 and (
+                    rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN]):
                 impacting = True
         solved = True
         if impacting:
@@ -189,8 +194,11 @@ def advance(
         solved = solved and forces_ok
         if not solved:
             clock[LCP_FAILURES] += 1.0
-            if settings[GO_BACK] > 0.0 and back.record_count[0] >= 0 and back.clock[0, DT] > settings[DT_MIN] * 1.000001:
-                go_back(0, q, u, clock, model, point_loss, point_interval, back)
+            # TryToSolveByGoingBack: two steps back (slot LAST_SLOT holds this step's start), or one
+            # where only one step is kept
+            slot = kept_slot(back, LAST_SLOT - 2, LAST_SLOT - 1, settings[DT_MIN]) if settings[GO_BACK] > 0.0 else -1
+            if slot >= 0:
+                go_back(slot, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 continue
         # --- 6: step size
