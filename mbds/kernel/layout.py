@@ -39,9 +39,10 @@ ModelArrays = namedtuple(
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
-Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin")
+Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin motion")
 """Body kinematics at one state: world points (m), bounding boxes, poses, velocities, the
-Jacobians B and their derivative terms, dependent coordinates, detection margins (m)."""
+Jacobians B and their derivative terms, dependent coordinates, detection margins (m) and
+speed bounds (see mbds.kernel.motion)."""
 
 Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
@@ -62,9 +63,10 @@ Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
 phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
 
-Rollback = namedtuple("Rollback", "q u clock records_int records_float record_count last_sample")
+Rollback = namedtuple("Rollback", "q u clock records_int records_float record_count last_sample cap tracked")
 """The starts of the last two steps (slot 1: the last, 0: the one before) and their contact
-records, for going back; the time of the last history sample (s)."""
+records, for going back; the time of the last history sample (s); the longest next step (s)
+after a step was rejected; how many contacts of the last step are checked at its end."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -84,7 +86,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     f = np.zeros
     bodies = Bodies(
         f((points, 2)), f((nb, 4)), f((nb, 3)), f((nb, 3)), f((nb, 3, n)), f((nb, 3)), f((nb, 3)),
-        f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs),
+        f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs), f((nb, 4)),
     )
     i = np.int64
     contacts = Contacts(
@@ -98,7 +100,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     rollback = Rollback(
         f((2, n)), f((2, n)), f((2, CLOCK)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
-        np.full(2, -1, dtype=i), np.full(1, -np.inf),
+        np.full(2, -1, dtype=i), np.full(1, -np.inf), np.full(1, np.inf), f(1, i),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)
 

@@ -33,17 +33,21 @@ import numpy as np
 
 from mbds.kernel.contact_problem import (
     CLOSED_FRACTION,
+    REST_FRACTION,
+    ROUND_OFF_FRACTION,
     accelerations,
+    contact_directions,
     contact_forces,
     contact_laws,
     dynamics,
+    free_dynamics,
     row_dot,
 )
 from mbds.kernel.detection import (
     bounding_boxes,
     contact_geometry,
     detect_contacts,
-    detection_margins,
+    tracked_depth,
     world_points,
 )
 from mbds.kernel.events import log_event
@@ -82,6 +86,7 @@ from mbds.kernel.layout import (
     ZERO_VELOCITY,
     T,
 )
+from mbds.kernel.motion import body_motion, detection_margins, reach_limit
 from mbds.kernel.random import uniform
 from mbds.kernel.rollback import begin_step, go_back, record
 from mbds.kernel.sampling import sample
@@ -111,21 +116,30 @@ def advance(
         # --- 1, 2: kinematics and contacts at the current state
         _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
         world_points(bodies.pose, model.points, model.point_start, bodies.world)
+        tracked = tracked_depth(bodies.world, contacts, back.tracked[0])  # before detection replaces them
+        if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
+            log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
+            return NOT_FINITE
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, bodies.motion, False)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, dyn.minv_h, bodies.motion, True)
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
-        detection_margins(model, bodies.vel, settings, bodies.margin)
+        detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
                              model.skin, bodies.margin, contacts.pair, contacts.vb, contacts.vertex, contacts.eb,
                              contacts.edge, contacts.xi, contacts.gap, contacts.normal, contacts.point, contacts.work)
         if nc < 0:
             return CAPACITY
         # --- 3: accept the step that led here, or go back to its start with half the step
-        penetration = 0.0
+        penetration = tracked
         for i in range(nc):
             penetration = max(penetration, -contacts.gap[i])
         if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[1] >= 0:
-            if back.clock[1, DT] > settings[DT_MIN] * 1.000001:
+            taken = t - back.clock[1, T]
+            if taken > settings[DT_MIN] * 1.000001:
                 go_back(1, q, u, clock, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
+                back.cap[0] = 0.5 * taken
+                back.tracked[0] = 0
                 clock[REJECTED] += 1.0
                 continue
             log_event(events, t, EVENT_OVER_PENETRATION, penetration, settings[MAX_PEN])
@@ -140,8 +154,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, rows, events, t)
-                if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
-                    return NOT_FINITE
+                contact_directions(rows, dyn, nc)
                 contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
@@ -162,18 +175,20 @@ def advance(
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, rows, events, t)
-        if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
-            log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
-            return NOT_FINITE
+        contact_directions(rows, dyn, nc)
         # --- 4: impact
         impacting = False
+        counted = False
+        round_off = ROUND_OFF_FRACTION * REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for i in range(nc):
             if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] < -settings[ZERO_VELOCITY]:
                 impacting = True
+                counted = counted or rows.gd_n[i] < -round_off
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model.point_start,
                             point_loss, point_interval, back, events, t)
+        if counted:
             clock[IMPACTS] += 1.0
         # --- 5: forces between impacts
         na, forces_ok = contact_forces(nc, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
@@ -184,9 +199,11 @@ def advance(
             if settings[GO_BACK] > 0.0 and back.record_count[0] >= 0 and back.clock[0, DT] > settings[DT_MIN] * 1.000001:
                 go_back(0, q, u, clock, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
+                back.tracked[0] = 0
                 continue
         # --- 6: step size
-        dt = _step_size(nc, na, contacts.gap, rows, pb, a1, settings, clock)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, bodies.motion, False)
+        dt = _step_size(model, nc, na, contacts.gap, bodies, rows, pb, a1, settings, clock, back)
         clock[DT] = dt
         t2 = t + dt
         target = min(clock[NEXT_SAMPLE], until)
@@ -196,17 +213,22 @@ def advance(
         # --- 7: Heun step with the contact set of step 5
         _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
               t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
+        back.tracked[0] = nc
         clock[STEPS] += 1.0
-        if impacting and settings[SAMPLE_AT_COLLISION] > 0.0:
+        if counted and settings[SAMPLE_AT_COLLISION] > 0.0:
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
 
 
 @jit
-def _step_size(nc, na, gap, rows, pb, a1, settings, clock):
-    """The next step (s): grown by 1.5 up to maximumTimestep, limited so that no approaching
-    open contact goes deeper than half maximumPenetration and no sliding contact passes zero
-    sliding speed, at least minimumTimestep."""
-    dt = min(1.5 * clock[DT], settings[DT_MAX])
+def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
+    """The next step (s): grown by 1.5 up to maximumTimestep; after a rejected step at most half
+    of it; no longer than the reach limit of every pair (no vertex beyond a detection margin can
+    penetrate); limited so that no approaching open contact goes deeper than half
+    maximumPenetration by its own motion and no sliding contact passes zero sliding speed; at
+    least minimumTimestep."""
+    dt = min(1.5 * clock[DT], settings[DT_MAX], back.cap[0])
+    back.cap[0] = np.inf
+    dt = reach_limit(model, bodies.motion, settings, bodies.margin, dt)
     for i in range(nc):
         if gap[i] > CLOSED_FRACTION * settings[MAX_PEN]:  # open: reach at most half maxPen
             accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]
