@@ -35,14 +35,12 @@ from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row
 
 REST_FRACTION = 0.01
 """A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
-dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration."""
+dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration. A
+closed contact approaching slower than that (round-off, or the drift of a pivoting contact)
+still gets its velocity from the impact laws, but this does not count as an impact."""
 STICK_FRACTION = 1e-3
 """A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
 stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero."""
-ROUND_OFF_FRACTION = 1e-3
-"""A closed contact approaching slower than ROUND_OFF_FRACTION times the rest velocity (within
-a maximum step it closes by 1e-5 of the allowed penetration) approaches by round-off: the
-impact laws still set its velocity, but it does not count as an impact."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 

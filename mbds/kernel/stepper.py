@@ -34,7 +34,6 @@ import numpy as np
 from mbds.kernel.contact_problem import (
     CLOSED_FRACTION,
     REST_FRACTION,
-    ROUND_OFF_FRACTION,
     accelerations,
     contact_directions,
     contact_forces,
@@ -179,11 +178,11 @@ def advance(
         # --- 4: impact
         impacting = False
         counted = False
-        round_off = ROUND_OFF_FRACTION * REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for i in range(nc):
             if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] < -settings[ZERO_VELOCITY]:
                 impacting = True
-                counted = counted or rows.gd_n[i] < -round_off
+                counted = counted or rows.gd_n[i] < -rest
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model.point_start,
