@@ -28,20 +28,34 @@ Figures:
   (the rest is writing the outputs);
 - ``compiled``: functions numba compiled in the tasks (numba's compile events, recorded per task
   in the ledger): 0 proves that no worker compiled;
-- collection: ``mbds-campaign collect``'s merge of the 2-worker campaign, against its compute
-  (the sum of its tasks' wall times); and the same for the campaign with a history sample every
-  10 ms (``writeToHistoryMultipleOfMaximumTimestep = 100``) instead of every 1 ms (10), run once more
-  on 2 workers: collecting copies every run's watch tables (240 watches per sample), so its cost
-  per run is a fixed part (opening the run file, defining its node) plus one that follows the
-  number of samples.
+- collection: ``mbds-campaign collect`` of the 2-worker campaign, against its compute (the sum
+  of its tasks' wall times); and the same for the campaign with a history sample every 10 ms
+  (``writeToHistoryMultipleOfMaximumTimestep = 100``) instead of every 1 ms (10), run once more
+  on 2 workers. Collecting reads each run file's summary variables and describes its root group;
+  the histories stay in the run files;
+- opening: ``mbds.open_campaign`` of a campaign file holding 1000 run references (the 80 runs of
+  the 2-worker campaign, each referenced 12 or 13 times), the size the documentation promises
+  to open in under 2 s.
 
 The two MPI campaigns' collected data are compared bit for bit.
 
-Run from the repository root: ``.venv/bin/python benchmarks/campaign.py``.
+Scaling mode, ``--scaling [--chains 48] [--versions 5] [--workers 1,2,4,8,15]``: the campaign
+with ``--chains`` chains (``c'amplitude`` takes chains / 4 values) and versions 000 to
+``--versions`` - 1 runs for real on 1 worker, and on every N of ``--workers`` that the machine's
+cores allow (N + 1 ranks); for the other N, the measured task times are replayed
+(``benchmarks/scaling.py``) with the scheduler's own rules and the measured round trip, and the
+start-up and shut-down of the measured run are added. It prints N, wall, parallel efficiency
+(wall(1) / (N wall(N))), whether the row was measured or replayed, and the split of the time
+lost against a perfect speed-up: start-up and shut-down, idle workers (the tail), round trips,
+and, for measured rows, the extra time of each worker's first task. The same replay with tasks
+handed out in plan order shows what ordering by remaining work gains.
+
+Run from the repository root: ``.venv/bin/python benchmarks/campaign.py [--scaling ...]``.
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import shutil
@@ -81,14 +95,28 @@ SINGLE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "O
                                         "NUMBA_NUM_THREADS")}
 
 
-def make_campaign(folder: Path, extra: str = "") -> Path:
+def make_campaign(folder: Path, extra: str = "", job_text: str = JOB) -> Path:
     """A copy of campaigns/wearballs (model files only) with the campaign's job file (``extra``
     added to its [campaign] section); its path."""
     shutil.copytree(ROOT / "campaigns" / "wearballs", folder,
                     ignore=shutil.ignore_patterns("[0-9][0-9][0-9]", "campaign", ".*"))
     job = folder / "campaign.job"
-    job.write_text(JOB + extra)
+    job.write_text(job_text + extra)
     return job
+
+
+def scaling_job(chains: int, versions: int) -> str:
+    """The job file of the scaling campaign: ``chains`` / 4 amplitudes x 4 frequencies."""
+    if chains % 4:
+        raise SystemExit("--chains must be a multiple of 4 (amplitudes x 4 frequencies)")
+    amplitudes = np.linspace(0.003, 0.006, chains // 4)
+    return (JOB.replace("jobs = 000-009", f"jobs = 000-{versions - 1:03d}")
+            .replace("c'amplitude = 0.004, 0.005", "c'amplitude = " + ", ".join(f"{a:.6g}" for a in amplitudes)))
+
+
+def mpi_launch(workers: int) -> list[str]:
+    """The command that runs a campaign on ``workers`` MPI workers and one scheduling rank."""
+    return [str(MPIEXEC), "-n", str(workers + 1), str(PYTHON), "-m", "mpi4py", "-m", "mbds.cli.campaign", "run"]
 
 
 def cold_warm_up(job: Path, env: dict) -> tuple[float, int]:
@@ -100,10 +128,10 @@ def cold_warm_up(job: Path, env: dict) -> tuple[float, int]:
     return float(seconds), int(structures)
 
 
-def launch(name: str, job: Path, env: dict) -> dict:
-    """Run the campaign as ``name`` says; the figures of its ledger."""
+def launch(name: str, job: Path, env: dict, command: list[str] | None = None) -> dict:
+    """Run the campaign as ``name`` says (or with ``command``); the figures of its ledger."""
     begun = time.perf_counter()
-    done = subprocess.run(LAUNCHES[name] + [str(job)], env=env, capture_output=True, text=True)
+    done = subprocess.run((command or LAUNCHES[name]) + [str(job)], env=env, capture_output=True, text=True)
     wall = time.perf_counter() - begun
     if done.returncode != 0:
         raise SystemExit(f"{name}: exit {done.returncode}\n{done.stderr}")
@@ -125,7 +153,22 @@ def launch(name: str, job: Path, env: dict) -> dict:
         "compiled": sum(e["compiled"] for e in tasks.values()),
         "ranks": sorted({e["rank"] for e in tasks.values() if "rank" in e}),
         "run_walls": {k: e["wall"] for k, e in tasks.items() if k.endswith("/run")},
+        "walls": {k: e["wall"] for k, e in tasks.items()},
+        "first_task_extra": _first_task_extra(tasks, start),
     }
+
+
+def _first_task_extra(tasks: dict, start: dict) -> float:
+    """Mean extra wall time (s) of each worker's first run task over the mean run task."""
+    runs = {k: e for k, e in tasks.items() if k.endswith("/run")}
+    if not runs:
+        return 0.0
+    mean = np.mean([e["wall"] for e in runs.values()])
+    firsts = []
+    for rank in {e.get("rank") for e in runs.values()} - {None}:
+        first = min((k for k, e in runs.items() if e.get("rank") == rank), key=start.get)
+        firsts.append(runs[first]["wall"] - mean)
+    return float(np.mean(firsts)) if firsts else 0.0
 
 
 def _seconds(stamp: str) -> float:
@@ -165,6 +208,37 @@ def collected(job: Path) -> tuple[float, object]:
     return seconds, open_campaign(path)
 
 
+def opening(job: Path, runs: int = 1000) -> float:
+    """Seconds for ``open_campaign`` of a campaign file with ``runs`` references, made from the
+    collected campaign of ``job`` by referencing its runs again and again."""
+    import netCDF4
+    import xarray as xr
+
+    from mbds.campaign.collect import RUNS_GROUP, open_campaign, write_references
+
+    folder = job.parent / "campaign"
+    with netCDF4.Dataset(folder / "campaign.nc") as f:
+        group = f.groups[RUNS_GROUP]
+        real = list(zip(group["node"][...], group["file"][...], group["description"][...]))
+        times, starts = group["time"][...], list(group["time_start"][...]) + [len(group["time"])]
+    references = []
+    for k in range(runs):
+        j = k % len(real)
+        references.append((f"/copy{k // len(real):02d}{real[j][0]}", real[j][1], real[j][2],
+                           times[starts[j]:starts[j + 1]]))
+    target = folder / "many.nc"
+    with xr.open_dataset(folder / "campaign.nc") as summary:
+        summary.load().to_netcdf(target)
+    with netCDF4.Dataset(target, "a") as out:
+        write_references(out.createGroup(RUNS_GROUP), references)
+    begun = time.perf_counter()
+    tree = open_campaign(target)
+    seconds = time.perf_counter() - begun
+    assert len(tree.ds.data_vars) and sum(1 for node in tree.subtree if "time" in node.ds.dims) == runs
+    tree.close()
+    return seconds
+
+
 def _megabytes(job: Path) -> str:
     """Size of the campaign file and the mean uncompressed size of a run's watch tables."""
     import netCDF4
@@ -184,12 +258,59 @@ def identical(a, b) -> bool:
     return True
 
 
+def scaling(chains: int, versions: int, counts: list[int]) -> int:
+    """The scaling mode (see the module docstring)."""
+    from scaling import replay
+
+    from mbds.campaign.plan import expand
+
+    cores = os.cpu_count() or 1
+    with tempfile.TemporaryDirectory(prefix="mbds-campaign-scaling-") as temp:
+        temp = Path(temp)
+        env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"), **SINGLE_THREAD)
+        job_text = scaling_job(chains, versions)
+        cold, _ = cold_warm_up(make_campaign(temp / "warm-up", job_text=job_text), env)
+        measured = {}
+        for n in sorted({1, *counts}):
+            if n == 1 or n + 1 <= cores:
+                job = make_campaign(temp / f"n{n}", job_text=job_text)
+                measured[n] = launch(f"MPI, {n} workers", job, env, mpi_launch(n))
+        base = measured[1]
+        plan = expand(job)
+        startup = base["wall"] - base["loop"]
+        print(f"campaign: {chains} chains x {versions} versions of wearballs (1.5 s each), {base['count']} tasks; "
+              f"cold compile {cold:.1f} s; {cores} cores here; 1 worker: wall {base['wall']:.1f} s, "
+              f"tasks {base['tasks']:.1f} s, start-up and shut-down {startup:.2f} s, round trip "
+              f"{1e3 * base['sched']:.1f} ms")
+        print(f"\n{'N':>3} {'how':>9} {'wall s':>8} {'efficiency':>10} {'start+end s':>11} {'idle s':>7} "
+              f"{'round trips s':>13} {'first task s':>12} {'plan order: wall s':>19} {'efficiency':>10}")
+        for n in counts:
+            ordered = replay(plan, base["walls"], n, base["sched"], longest_first=True)
+            planned = replay(plan, base["walls"], n, base["sched"], longest_first=False)
+            if n in measured:
+                how, wall, first = "measured", measured[n]["wall"], measured[n]["first_task_extra"]
+            else:
+                how, wall, first = "replayed", startup + ordered.loop, float("nan")
+            print(f"{n:>3} {how:>9} {wall:>8.2f} {base['wall'] / (n * wall):>10.3f} {startup:>11.2f} "
+                  f"{ordered.idle / n:>7.2f} {len(base['walls']) * base['sched'] / n:>13.2f} {first:>12.2f} "
+                  f"{startup + planned.loop:>19.2f} {base['wall'] / (n * (startup + planned.loop)):>10.3f}")
+    return 0
+
+
 def main() -> int:
     import warnings
 
     from mbds.errors import ModelWarning
 
     warnings.simplefilter("ignore", ModelWarning)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--scaling", action="store_true", help="the scaling mode")
+    parser.add_argument("--chains", type=int, default=48, help="chains of the scaling campaign (a multiple of 4)")
+    parser.add_argument("--versions", type=int, default=5, help="versions per chain of the scaling campaign")
+    parser.add_argument("--workers", default="1,2,4,8,15", help="worker counts of the scaling mode")
+    args = parser.parse_args()
+    if args.scaling:
+        return scaling(args.chains, args.versions, [int(n) for n in args.workers.split(",")])
     with tempfile.TemporaryDirectory(prefix="mbds-campaign-bench-") as temp:
         temp = Path(temp)
         env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"), **SINGLE_THREAD)
@@ -235,6 +356,7 @@ def main() -> int:
         print(f"collection, history every 10 ms: {seconds_coarse:.2f} s for {sampled['tasks']:.1f} s of compute "
               f"({seconds_coarse / sampled['tasks']:.2%}; {1e3 * seconds_coarse / runs:.0f} ms per run), "
               f"{_megabytes(coarse)}")
+        print(f"opening a campaign of 1000 runs: {opening(jobs['MPI, 2 workers']):.2f} s")
         _, other = collected(jobs["MPI, 1 worker"])
         print(f"collected data of 1 and 2 workers bit-identical: {identical(tree, other)}")
     return 0

@@ -8,13 +8,22 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+source"
 
-__all__ = ["__version__", "open_campaign"]
+__all__ = ["__version__", "open_campaign", "outline", "select", "simulate", "stack"]
+_LAZY = {
+    "open_campaign": "mbds.campaign.collect",
+    "outline": "mbds.data.analysis",
+    "select": "mbds.data.analysis",
+    "stack": "mbds.data.analysis",
+    "simulate": "mbds.simulation.notebook",
+}
 
 
 def __getattr__(name: str):
-    """``mbds.open_campaign`` (:func:`mbds.campaign.collect.open_campaign`), imported on first use."""
-    if name == "open_campaign":
-        from mbds.campaign.collect import open_campaign
+    """The notebook API, imported on first use: ``open_campaign``
+    (:mod:`mbds.campaign.collect`), ``outline``, ``stack``, ``select`` (:mod:`mbds.data.analysis`)
+    and ``simulate`` (:mod:`mbds.simulation.notebook`)."""
+    if name in _LAZY:
+        from importlib import import_module
 
-        return open_campaign
+        return getattr(import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'mbds' has no attribute {name!r}")

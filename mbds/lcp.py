@@ -18,6 +18,8 @@ from mbds.kernel import lcp as _kernel
 PIVOT_TOLERANCE_MIN = 1e-14
 PIVOT_TOLERANCE_MAX = 1e-10
 LEXICO_ZERO_TOLERANCE = 1e-8
+MAX_PIVOTS = 10_000
+"""Default pivot limit per tolerance attempt (Siconos' default for its Lemke solvers too)."""
 
 
 class Status(enum.IntEnum):
@@ -49,7 +51,8 @@ def solve(
 ) -> LCPResult:
     """Solve LCP(M, q) for M (n, n) and q (n,), any real values (converted to float64).
 
-    max_pivots: limit per tolerance attempt, default 100 (n + 1). See :mod:`mbds.kernel.lcp`
+    max_pivots: limit per tolerance attempt, default the larger of :data:`MAX_PIVOTS` and
+    100 (n + 1); Murty's exponential problem (2^n pivots) is solved for n <= 13. See :mod:`mbds.kernel.lcp`
     for the meaning of the tolerances. Raises ValueError on bad shapes, non-finite data or
     inconsistent tolerances.
     """
@@ -65,7 +68,7 @@ def solve(
     if not 0.0 < lexico_zero_tolerance < 1.0:
         raise ValueError("need 0 < lexico_zero_tolerance < 1")
     if max_pivots is None:
-        max_pivots = 100 * (n + 1)
+        max_pivots = max(MAX_PIVOTS, 100 * (n + 1))
     if max_pivots < 1:
         raise ValueError("max_pivots must be at least 1")
     z = np.empty(n)

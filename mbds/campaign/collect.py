@@ -1,7 +1,7 @@
-"""One file for a whole campaign: the runs' ``history.nc`` files merged into ``campaign.nc``.
+"""One file for a whole campaign: the summary of its runs, and references to their histories.
 
-``collect(plan) -> path`` writes ``<campaign folder>/campaign.nc`` (atomically) as NetCDF
-groups; ``open_campaign(path)`` reads it back as an ``xarray.DataTree``:
+``collect(plan) -> path`` writes ``<campaign folder>/campaign.nc`` (atomically); ``open_campaign``
+reads it back as an ``xarray.DataTree``:
 
 - the root dataset, the summary: dimensions ``variant``, ``version``, ``body``, ``point`` (and
   ``replicate`` when the campaign has replicates) with ``shape_x``, ``shape_y`` (m, the shape
@@ -12,6 +12,12 @@ groups; ``open_campaign(path)`` reads it back as an ``xarray.DataTree``:
 - one node per run with that run's ``history.nc`` root dataset: ``/<variant>/<version>``,
   ``/<variant>/<version>/r<k>`` (ensemble replicates), ``/<variant>/r<k>/<version>`` (a chain
   per replicate).
+
+The runs' histories stay in their files: the group ``runs`` of ``campaign.nc`` holds, per run,
+its node, its file (relative to the campaign folder), a description of the file's root group and
+its sample times (:mod:`mbds.data.references`). Collecting reads each run's summary variables
+once; opening builds every node from the descriptions without opening a run file, and a node's
+values are read from its run file when they are used.
 
 In ``mode = ensemble`` the shapes have no ``replicate`` dimension (the replicates of a version run
 on one shape); in ``mode = chains`` every variable of a run has it. A run that is not done has
@@ -33,82 +39,89 @@ import xarray as xr
 from mbds import __version__
 from mbds.campaign.ledger import DONE, Ledger
 from mbds.campaign.plan import RUN, Plan, Task
+from mbds.campaign.replicates import identical_replicates
 from mbds.campaign.section import ENSEMBLE
 from mbds.data.history import FILE_NAME as HISTORY
+from mbds.data.references import describe, open_described
 from mbds.errors import ModelError
 from mbds.io.text import atomic_path
 
 CAMPAIGN_FILE = "campaign.nc"
+RUNS_GROUP = "runs"
 POINT_VARIABLES = ("shape_x", "shape_y", "point_lost_work")
 SUMMARY_VARIABLES = POINT_VARIABLES + ("body", "point_body", "point_number")
 
 
 def collect(plan: Plan) -> Path:
-    """Merge the runs of ``plan`` into ``campaign.nc`` in its campaign folder; its path.
+    """Write ``campaign.nc`` in the campaign folder of ``plan`` from its done runs; its path.
     ModelError when no run of the campaign is done.
 
-    Each run's root group is copied into its node, one run at a time, variable by variable with
-    the run file's own types, attributes, chunks and compression (memory holds one variable at a
-    time, whatever the campaign's size); then the summary is written into the root group."""
+    Each run file is read once, for its summary variables and the description of its root group;
+    the histories themselves stay in the run files."""
     ledger = Ledger.read(plan.folder)
     ledger.check(plan)
     runs = [t for t in plan.tasks if t.kind == RUN]
     done = [t for t in runs if ledger.state(t.id) == DONE and (t.folder / HISTORY).is_file()]
     if not done:
         raise ModelError("no run of the campaign is done yet; run it first: mbds-campaign run", plan.job.path)
+    histories, references = {}, []
+    for task in done:
+        description, times, small = describe(task.folder / HISTORY, read=SUMMARY_VARIABLES)
+        histories[task.id] = xr.decode_cf(xr.Dataset(small, attrs=json.loads(description)["attrs"]))
+        references.append((node_path(plan, task), (task.folder / HISTORY).relative_to(plan.folder).as_posix(),
+                           description, times))
     path = plan.folder / CAMPAIGN_FILE
     with atomic_path(path) as tmp:
-        with netCDF4.Dataset(tmp, "w") as out:
-            histories = {task.id: copy_root_group(task.folder / HISTORY, out.createGroup(node_path(plan, task)))
-                         for task in done}
-        summary(plan, ledger, runs, histories).to_netcdf(tmp, mode="a", engine="netcdf4")
+        summary(plan, ledger, runs, histories).to_netcdf(tmp, engine="netcdf4")
+        with netCDF4.Dataset(tmp, "a") as out:
+            write_references(out.createGroup(RUNS_GROUP), references)
     return path
 
 
+def write_references(group: netCDF4.Group, references: list[tuple[str, str, str, np.ndarray]]) -> None:
+    """The runs' nodes, files, descriptions and sample times (concatenated, with each run's first
+    index in ``time_start``) into ``group``."""
+    group.createDimension("run", len(references))
+    times = [r[3] for r in references]
+    group.createDimension("sample", sum(len(t) for t in times))
+    for k, name in enumerate(("node", "file", "description")):
+        variable = group.createVariable(name, str, ("run",))
+        variable[:] = np.array([r[k] for r in references], dtype=object)
+    start = group.createVariable("time_start", "i8", ("run",))
+    start[:] = np.concatenate([[0], np.cumsum([len(t) for t in times])[:-1]]).astype(np.int64)
+    samples = group.createVariable("time", "f8", ("sample",), zlib=True, complevel=1)
+    samples[:] = np.concatenate(times) if times else np.zeros(0)
+
+
 def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
-    """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one), opened
-    lazily as xarray opens files (values are read when used; ``tree.close()`` releases the file),
-    or read whole into memory and closed with ``load=True``. ModelError when there is none."""
+    """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one) as a
+    tree: the summary opened lazily as xarray opens files, and each run's node built from its
+    reference, its values read from the run's ``history.nc`` when used (``tree.close()`` releases
+    the campaign file); or everything read into memory, files closed, with ``load=True``.
+    The varied keys are indexed: ``tree.ds.sel(c_mu=0.3)`` (one key at a time; several with
+    :func:`mbds.data.analysis.select`). ModelError when there is none."""
     path = Path(path)
     if path.is_dir():
         path = path / CAMPAIGN_FILE
     if not path.is_file():
         raise ModelError("no campaign file; collect the campaign first: mbds-campaign collect", path)
-    tree = xr.open_datatree(path, engine="netcdf4")
+    nodes = {}
+    with netCDF4.Dataset(path) as campaign:
+        runs = campaign.groups[RUNS_GROUP]
+        times, starts = runs["time"][...], runs["time_start"][...]
+        ends = np.append(starts[1:], len(times))
+        for node, file, description, a, b in zip(runs["node"][...], runs["file"][...], runs["description"][...],
+                                                 starts, ends):
+            nodes[node] = open_described(path.parent / file, description, times[a:b])
+    opened = summary_ds = xr.open_dataset(path, engine="netcdf4")
+    for name in [name for name, c in summary_ds.coords.items() if "key" in c.attrs and c.dims == ("variant",)]:
+        summary_ds = summary_ds.set_xindex(name)
+    tree = xr.DataTree.from_dict({"/": summary_ds, **nodes})
+    tree.set_close(opened.close)  # the file itself: a handle left to the garbage collector may close inside HDF5
     if not load:
         return tree
     with tree:
         return tree.load()
-
-
-def copy_root_group(source: Path, group: netCDF4.Group) -> xr.Dataset:
-    """Copy the root group of the run file ``source`` (dimensions, variables with their
-    attributes, chunks and compression, and its attributes; not its subgroups) into ``group``;
-    what the summary takes from it: the variables ``SUMMARY_VARIABLES`` and the attributes."""
-    kept, pairs = {}, []
-    with netCDF4.Dataset(source) as run:
-        run.set_auto_maskandscale(False)
-        for name, dimension in run.dimensions.items():
-            group.createDimension(name, None if dimension.isunlimited() else len(dimension))
-        for name, variable in run.variables.items():  # define all first: each switch to writing costs
-            attributes = {key: variable.getncattr(key) for key in variable.ncattrs()}
-            filters = variable.filters() or {}
-            chunks = variable.chunking()
-            copy = group.createVariable(
-                name, variable.datatype, variable.dimensions, fill_value=attributes.pop("_FillValue", None),
-                zlib=bool(filters.get("zlib")), complevel=filters.get("complevel") or 4,
-                shuffle=bool(filters.get("shuffle")), contiguous=chunks == "contiguous",
-                chunksizes=None if chunks == "contiguous" else chunks)
-            copy.set_auto_maskandscale(False)
-            copy.setncatts(attributes)
-            pairs.append((name, variable, copy, attributes))
-        attributes = {key: run.getncattr(key) for key in run.ncattrs()}
-        group.setncatts(attributes)
-        for name, variable, copy, variable_attributes in pairs:
-            copy[...] = values = variable[...]
-            if name in SUMMARY_VARIABLES:
-                kept[name] = (variable.dimensions, values, variable_attributes)
-    return xr.Dataset(kept, attrs=attributes)
 
 
 def node_path(plan: Plan, task: Task) -> str:
@@ -164,15 +177,17 @@ def summary(plan: Plan, ledger: Ledger, runs: list[Task], histories: dict[str, x
     data["status"] = (run_dims, status.astype(str), {"long_name": "state of the run task in the ledger"})
     data["seed"] = (("variant", "replicate"), seeds, {"long_name": "seed of the chain's runs"})
     coords = {
-        "variant": ("variant", np.array(variants, dtype=object)),
-        "replicate": ("replicate", np.arange(replicates, dtype=np.int32)),
-        "version": ("version", np.array(versions, dtype=np.int32)),
+        "variant": ("variant", np.array(variants, dtype=object), {"long_name": "variant of the campaign"}),
+        "replicate": ("replicate", np.arange(replicates, dtype=np.int32), {"long_name": "replicate", "units": "1"}),
+        "version": ("version", np.array(versions, dtype=np.int32), {"long_name": "model version", "units": "1"}),
         "body": ("body", first["body"].values),
         "point_body": ("point", first["point_body"].values),
         "point_number": ("point", first["point_number"].values),
     }
     for p in plan.campaign.parameters if plan.campaign else ():
-        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]), {"key": p.key})
+        coords[_name(p.key)] = ("variant", _values([v.values[p.key] for v in plan.variants]),
+                                {"key": p.key, "long_name": f"varied key {p.key}", "units": "1",
+                                 "comment": "in the unit the model's files give it"})
     ds = xr.Dataset(data, coords=coords, attrs=provenance(plan, ledger))
     return ds if replicates > 1 else ds.squeeze("replicate", drop=True)
 
@@ -180,7 +195,9 @@ def summary(plan: Plan, ledger: Ledger, runs: list[Task], histories: dict[str, x
 def provenance(plan: Plan, ledger: Ledger) -> dict:
     """Attributes of the campaign file: what made it, where and when."""
     runs = ledger.campaign.get("runs", [])
+    same, complete = identical_replicates(plan, ledger)
     return {
+        "Conventions": "CF-1.10",
         "title": f"mbds campaign of {plan.job.path.name}",
         "mbds_version": __version__,
         "git_commit": _git_commit(),
@@ -194,6 +211,10 @@ def provenance(plan: Plan, ledger: Ledger) -> dict:
         "start": runs[0]["start"] if runs else "",
         "end": runs[-1]["end"] if runs else "",
         "runs": json.dumps(runs),
+        "identical_replicates": json.dumps(same),
+        "identical_replicates_note": (f"{len(same)} of {complete} versions with all replicates run have "
+                                      "bit-identical replicates: the lexicographic randomisation decided no pivot there"
+                                      if complete else ""),
     }
 
 

@@ -8,8 +8,10 @@ nothing more can start (all done, or only failed and blocked chains left), or on
 only.
 
 ``warm_up(plan)`` compiles each distinct model structure of the campaign once, in this process,
-before any task starts, so that no worker compiles. ``campaign_cache(plan)`` points
-``MBDS_CACHE_DIR`` at ``<campaign folder>/.cache`` unless it is set already.
+before any task starts, so that no worker compiles. Compiled models live in the user's cache
+(:func:`mbds.expr.cache.default_cache_dir`, keyed by the generated source's hash), so a new
+campaign of models compiled before starts warm; ``campaign_cache(plan, private=True)`` keeps
+them in ``<campaign folder>/.cache`` instead.
 
 ``stop_signals()`` turns SIGTERM and SIGUSR1 (Slurm's warning before the time limit) and Ctrl-C
 into a flag: the campaign stops taking tasks and the running ones stop, write what they have and
@@ -30,6 +32,7 @@ from dataclasses import dataclass, field
 from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
 from mbds.campaign.plan import Plan, done_count, ready_tasks
+from mbds.campaign.priority import by_remaining_work
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
 from mbds.expr.cache import source_hash
@@ -57,10 +60,11 @@ class Outcome:
     end: str = ""
 
 
-def campaign_cache(plan: Plan) -> None:
-    """Set ``MBDS_CACHE_DIR`` to the campaign's cache folder unless it is set already (before
-    the workers start, which inherit it)."""
-    os.environ.setdefault("MBDS_CACHE_DIR", str((plan.folder / CACHE_FOLDER).resolve()))
+def campaign_cache(plan: Plan, private: bool = False) -> None:
+    """With ``private``, set ``MBDS_CACHE_DIR`` to the campaign's cache folder unless it is set
+    already (before the workers start, which inherit it); else the user's shared cache is used."""
+    if private:
+        os.environ.setdefault("MBDS_CACHE_DIR", str((plan.folder / CACHE_FOLDER).resolve()))
 
 
 def warm_up(plan: Plan) -> int:
@@ -83,7 +87,8 @@ def warm_up(plan: Plan) -> int:
 def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1) -> Outcome:
     """Run the campaign's ready tasks on ``executor`` (:mod:`mbds.campaign.executors`, with
     ``workers`` processes running tasks) until none is left or ``stopping()``;
-    ``progress(done, total)`` after each result, if given. The run (host, workers, start, end)
+    ``progress(task_id, result, done, running)`` after each result and ``progress(None, None,
+    done, running)`` after tasks are handed out, if given (``done``: tasks done in all). The run (host, workers, start, end)
     is added to the ledger's ``campaign["runs"]``."""
     ledger = Ledger.load(plan.folder)
     ledger.bind(plan)
@@ -98,12 +103,12 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             changed = True
             {DONE: outcome.done, FAILED: outcome.failed, PENDING: outcome.stopped}[result["state"]].append(task_id)
             if progress is not None:
-                progress(done_count(plan, ledger), len(plan.tasks))
+                progress(task_id, result, done_count(plan, ledger), len(running))
         if stopping() and not told:
             told = outcome.interrupted = True
             executor.stop()
         if not told:
-            for task in ready_tasks(plan, ledger):
+            for task in by_remaining_work(plan, ledger, ready_tasks(plan, ledger)):
                 if executor.free() <= 0 or stopping():
                     break
                 running.add(task.id)
@@ -112,6 +117,8 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
                 changed = True
         if changed:
             ledger.save()
+            if progress is not None:
+                progress(None, None, done_count(plan, ledger), len(running))
         if not running:
             break
         time.sleep(POLL)

@@ -4,7 +4,8 @@
 BaseExceptions pass); it returns the ledger state and info, ready for
 ``ledger.mark(task.id, **result)``:
 
-- ``{"state": "done", "output": path, "wall": s}`` (with ``note`` when there was nothing to do:
+- ``{"state": "done", "output": path, "wall": s}``, and for a run its ``digest``, equal for runs
+  with bit-identical results (with ``note`` when there was nothing to do:
   a run that is complete already, a next version that exists already — a task cut off by a kill
   between its last write and the ledger's update is thus not done twice);
 - ``{"state": "failed", "reason": "file:line: message", "wall": s}``: bad input, a run that did
@@ -24,9 +25,12 @@ replicate runs of one version, may run at once in different processes.
 
 from __future__ import annotations
 
+import hashlib
 import time
 import warnings
 from collections.abc import Callable
+
+import numpy as np
 
 from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
@@ -88,7 +92,17 @@ def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     if not record.complete:
         return {"state": FAILED, "output": output, "reason": f"the run stopped at t = {record.end_time:.9g} s "
                 f"({record.stopped})"}
-    return {"state": DONE, "output": output}
+    return {"state": DONE, "output": output, "digest": result_digest(record)}
+
+
+def result_digest(record) -> str:
+    """A digest of a run's end state (q, u, clock, losses per point): equal for runs whose
+    results are bit-identical, different otherwise (but for a sha256 collision)."""
+    state = record.final_state
+    digest = hashlib.sha256()
+    for array in (state.q, state.u, state.clock, state.point_loss):
+        digest.update(np.ascontiguousarray(array).tobytes())
+    return digest.hexdigest()[:16]
 
 
 def _wear(task: Task) -> dict:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -94,15 +95,34 @@ def collect(path: Path = JOB, debug: bool = DEBUG) -> None:
     mbds.open_campaign)."""
     from mbds.campaign.collect import collect as collect_runs
     from mbds.campaign.plan import expand
+    from mbds.io.lock import folder_lock
 
     with reported_errors(debug):
-        print(f"wrote {collect_runs(expand(path))}")
+        plan = expand(path)
+        with folder_lock(plan.folder, "mbds-campaign collect"):
+            print(f"wrote {collect_runs(plan)}")
+
+
+@app.command()
+def plot(
+    path: Path = JOB,
+    output: Path = typer.Option(None, "-o", "--output", help="Folder for the figures; default <campaign folder>/figures."),
+    debug: bool = DEBUG,
+) -> None:
+    """Draw a collected campaign's figures: its summary and the worn shapes of every body."""
+    from mbds.cli.plot import campaign_plot_command
+
+    with reported_errors(debug):
+        for written in campaign_plot_command(path, output):
+            print(f"wrote {written}")
 
 
 @app.command()
 def run(
     path: Path = JOB,
     workers: int = typer.Option(1, "--workers", min=1, help="Processes running tasks at once without MPI."),
+    campaign_cache: bool = typer.Option(False, "--campaign-cache",
+                                        help="Keep compiled models in <campaign>/.cache, not the user's shared cache."),
     debug: bool = DEBUG,
 ) -> None:
     """Run the campaign's tasks: on MPI ranks under mpiexec or srun (rank 0 schedules), else in
@@ -110,6 +130,7 @@ def run(
     from mbds.campaign import executors
 
     comm = _mpi_world()
+    _abort_on_uncaught(comm)
     if comm is not None and comm.Get_rank() > 0:
         from mbds.campaign.run import stop_signals
 
@@ -119,7 +140,7 @@ def run(
     ranks = executors.Ranks(comm) if comm is not None else None
     try:
         with reported_errors(debug):
-            code = _schedule(path, workers, ranks)
+            code = _schedule(path, workers, ranks, campaign_cache)
     except typer.Exit as exc:
         code = exc.exit_code
     finally:
@@ -135,43 +156,18 @@ def run(
         raise typer.Exit(code)
 
 
-def _schedule(path: Path, workers: int, ranks) -> int:
-    """Rank 0 or the only process: check, warm up, run the loop; the exit code."""
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-    )
-
-    from mbds.campaign import executors
+def _schedule(path: Path, workers: int, ranks, private_cache: bool) -> int:
+    """Rank 0 or the only process: check, lock the campaign folder, warm up, run the loop; the
+    exit code."""
     from mbds.campaign.ledger import Ledger
     from mbds.campaign.plan import done_count, expand
-    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
+    from mbds.io.lock import folder_lock
 
     plan = expand(path)
     Ledger.read(plan.folder).check(plan)
-    campaign_cache(plan)
-    console = Console(stderr=True)
-    with stop_signals() as stopping:
-        warm_up(plan)
-        if ranks is not None:
-            executor, workers = ranks, ranks.free()
-        elif workers > 1:
-            executor = executors.Pool(workers)
-        else:
-            executor = executors.Sequential(stopping)
-        bar = Progress(TextColumn("tasks"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                       console=console, disable=not console.is_terminal)
-        with bar:
-            shown = bar.add_task("tasks", total=len(plan.tasks), completed=done_count(plan, Ledger.read(plan.folder)))
-            try:
-                outcome = run_campaign(plan, executor, stopping,
-                                       lambda done, total: bar.update(shown, completed=done), workers)
-            finally:
-                if ranks is None:
-                    executor.close()
+    plan.folder.mkdir(parents=True, exist_ok=True)
+    with folder_lock(plan.folder, "mbds-campaign run"):
+        outcome = _run_locked(plan, workers, ranks, private_cache)
     print(f"{len(outcome.done)} tasks done, {len(outcome.failed)} failed"
           + (f", {len(outcome.stopped)} stopped" if outcome.stopped else ""), file=sys.stderr)
     if outcome.interrupted:
@@ -180,14 +176,93 @@ def _schedule(path: Path, workers: int, ranks) -> int:
     return EXIT_FAILED if outcome.failed or done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks) else 0
 
 
+def _run_locked(plan, workers: int, ranks, private_cache: bool):
+    """Warm up and run the scheduling loop of ``plan`` (its folder locked); the outcome."""
+    from mbds.campaign import executors
+    from mbds.campaign.ledger import Ledger
+    from mbds.campaign.plan import done_count
+    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
+    from mbds.cli.campaign_progress import CampaignProgress
+
+    campaign_cache(plan, private_cache)
+    report = CampaignProgress(len(plan.tasks), done_count(plan, Ledger.read(plan.folder)))
+    with stop_signals() as stopping:
+        report.phase(f"warm-up: compiling the models of {max(len(plan.variants), 1)} variant(s), "
+                     "or loading them from the cache")
+        report.phase_done(f"warm-up: {warm_up(plan)} distinct model(s) ready")
+        if ranks is not None:
+            executor, workers = ranks, ranks.free()
+        elif workers > 1:
+            executor = executors.Pool(workers)
+        else:
+            executor = executors.Sequential(stopping)
+        report.phase(f"running {report.total - report.done} of {report.total} tasks on {workers} worker(s)")
+
+        def progress(task_id, result, done, running):
+            if task_id is None:
+                report.started(running)
+            else:
+                report.finished(task_id, result, done, running)
+
+        with report:
+            try:
+                outcome = run_campaign(plan, executor, stopping, progress, workers)
+            finally:
+                if ranks is None:
+                    executor.close()
+    return outcome
+
+
+LAUNCHER_SIZES = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "MV2_COMM_WORLD_SIZE", "PMIX_SIZE")
+"""Environment variables in which MPI launchers (MPICH's Hydra, Intel MPI, Open MPI, MVAPICH,
+PMIx) tell each process how many ranks they started; Slurm's srun: ``SLURM_STEP_NUM_TASKS``."""
+
+
+def launcher_ranks(environ=os.environ) -> int:
+    """How many ranks the launcher (mpiexec, mpirun, srun) started, from its environment; 1 when
+    the process was not started by one."""
+    names = [*LAUNCHER_SIZES, *(["SLURM_STEP_NUM_TASKS"] if "SLURM_STEP_ID" in environ else [])]
+    for name in names:
+        value = environ.get(name, "")
+        if value.isdigit():
+            return int(value)
+    return 1
+
+
 def _mpi_world():
-    """MPI's world communicator when launched on more than one rank (``python -m mpi4py`` under
-    mpiexec or srun), else None."""
-    if "mpi4py.run" not in sys.modules:  # not launched with python -m mpi4py
+    """MPI's world communicator when launched on more than one rank (``mbds-campaign run`` or
+    ``python -m mpi4py -m mbds.cli.campaign run`` under mpiexec or srun), else None.
+
+    A process that its launcher started as one of several ranks but that finds a world of one
+    (mpi4py built against another MPI library than the launcher's) stops with exit 2 instead of
+    running the whole campaign alone beside its copies."""
+    asked = launcher_ranks()
+    if asked == 1 and "mpi4py.run" not in sys.modules:
         return None
     from mpi4py import MPI
 
-    return MPI.COMM_WORLD if MPI.COMM_WORLD.Get_size() > 1 else None
+    size = MPI.COMM_WORLD.Get_size()
+    if size == 1 and asked > 1:
+        print(f"error: the launcher started {asked} ranks, but MPI sees a world of 1 in this process: "
+              "mpi4py was built against another MPI library than the launcher's (use the mpiexec "
+              "of the MPI that mpi4py uses, e.g. the one beside this Python)", file=sys.stderr)
+        raise typer.Exit(2)
+    return MPI.COMM_WORLD if size > 1 else None
+
+
+def _abort_on_uncaught(comm) -> None:
+    """Make an uncaught exception in this rank abort all ranks (what ``python -m mpi4py`` does),
+    so that a failing rank never leaves the others waiting."""
+    if comm is None or "mpi4py.run" in sys.modules:
+        return
+    previous = sys.excepthook
+
+    def abort(kind, value, trace):
+        previous(kind, value, trace)
+        sys.stderr.flush()
+        comm.Abort(1)
+
+    sys.excepthook = abort
 
 
 if __name__ == "__main__":

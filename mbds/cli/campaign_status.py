@@ -11,6 +11,7 @@ from rich.table import Table
 
 from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, RUNNING, Ledger
 from mbds.campaign.plan import Plan, task_states
+from mbds.campaign.replicates import identical_replicates
 from mbds.io.folder import version_name
 
 STYLES = {DONE: "green", RUNNING: "cyan", FAILED: "bold red", BLOCKED: "yellow", PENDING: "dim"}
@@ -47,6 +48,11 @@ def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
     counts = Counter(states.values())
     parts = [f"{counts[s]} {s}" for s in (RUNNING, FAILED, BLOCKED, PENDING) if counts[s]]
     console.print(f"{counts[DONE]} of {len(states)} tasks done" + "".join(f", {p}" for p in parts), highlight=False)
+    same, complete = identical_replicates(plan, ledger)
+    if complete:
+        console.print(f"replicates bit-identical in {len(same)} of {complete} versions run in full"
+                      + (f" ({', '.join(same[:8])}{', ...' if len(same) > 8 else ''}): the lexicographic "
+                         "randomisation decided no pivot there" if same else ""), highlight=False)
     for job in ledger.submissions:
         console.print(f"Slurm job {job['job_id']} submitted {job['time']}", highlight=False)
 

@@ -104,6 +104,58 @@ def job(
     raise typer.Exit(code)
 
 
+@app.command()
+def plot(
+    kind: str = typer.Argument(..., help="shapes, watches, wear, energy, multipliers, coordinates or outline."),
+    path: Path = typer.Argument(..., help="A version folder, a model folder (its versions) or a history.nc."),
+    output: Path = typer.Option(None, "-o", "--output", help="File to write (.png, .svg, .pdf); default <kind>.png beside the run."),
+    time: float = typer.Option(None, "--time", help="shapes: the time to draw (s); default the run's end."),
+    body: str = typer.Option(None, "--body", help="wear, outline: the body; default the one that lost most work."),
+    versions: str = typer.Option(None, "--versions", help="wear: the versions to overlay, e.g. 000-005,008."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Draw a figure of a run (or of a model's versions, for wear) into a file."""
+    from mbds.cli.plot import plot_command
+
+    with reported_errors(debug):
+        print(f"wrote {plot_command(kind, path, output, time, body, versions)}")
+
+
+@app.command()
+def animate(
+    path: Path = typer.Argument(..., help="A version folder, a model folder (its last run) or a history.nc."),
+    output: Path = typer.Option(None, "-o", "--output", help="run.mp4 (needs ffmpeg) or run.gif; default animation.mp4 or .gif beside the run."),
+    fps: float = typer.Option(30, "--fps", help="Frames per second of video."),
+    speed: float = typer.Option(1.0, "--speed", help="Seconds of the run per second of video."),
+    contacts: bool = typer.Option(True, "--contacts/--no-contacts", help="Mark watched points and their impulses."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """Animate a run: its bodies at FPS frames per second of video, with a time label."""
+    from mbds.cli.plot import animate_command
+
+    if not fps > 0 or not speed > 0:
+        raise typer.BadParameter("--fps and --speed must be positive")
+    with reported_errors(debug):
+        print(f"wrote {animate_command(path, output, fps, speed, contacts)}")
+
+
+@app.command()
+def versions(
+    model: Path = typer.Argument(..., help="A model folder (campaigns/wearballs)."),
+    delete: str = typer.Option(None, "--delete", help="Delete these versions, e.g. 003-005."),
+    yes: bool = typer.Option(False, "--yes", help="Delete without asking."),
+    resample: str = typer.Option(None, "--resample", help="Resample the history of these versions, e.g. 002."),
+    interval: float = typer.Option(None, "--interval", help="--resample: the new sample interval (s)."),
+    debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
+) -> None:
+    """List a model's versions with their status, break time, lost work and wall time; delete
+    versions, or resample a history to a coarser interval."""
+    from mbds.cli.versions import versions_command
+
+    with reported_errors(debug):
+        versions_command(model, delete, yes, resample, interval, _console())
+
+
 def _console() -> Console:
     """A console for the terminal, or a wide one for a file or pipe."""
     return Console() if sys.stdout.isatty() else Console(width=140)

@@ -13,6 +13,7 @@ from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
 from mbds.data.record import RunRecord
+from mbds.io.lock import folder_lock
 from mbds.simulation.version_run import RunOptions, run_version
 from mbds.simulation.versions import run_folder
 
@@ -26,7 +27,7 @@ def run_command(path: Path, options: RunOptions, console: Console) -> int:
     folder = run_folder(path, options.start_from)
     console.print(f"running {escape(str(folder))}", highlight=False)
     wall = time.perf_counter()
-    with interrupt_flag() as interrupted, progress_bar(console) as bar:
+    with folder_lock(folder, "mbds run"), interrupt_flag() as interrupted, progress_bar(console) as bar:
         try:
             record = run_version(folder, options, track(bar, interrupted))
         except KeyboardInterrupt:  # a second Ctrl-C
@@ -73,21 +74,25 @@ def progress_bar(console: Console) -> Progress:
 
 @contextlib.contextmanager
 def interrupt_flag():
-    """A flag set by the first Ctrl-C (a second one interrupts at once)."""
+    """A flag set by the first Ctrl-C or SIGTERM (a second one acts at once, as without it)."""
     flag = threading.Event()
     if threading.current_thread() is not threading.main_thread():
         yield flag
         return
+    previous = {}
 
     def handler(signum, frame):
         flag.set()
-        signal.signal(signal.SIGINT, previous)
+        for number, action in previous.items():
+            signal.signal(number, action)
 
-    previous = signal.signal(signal.SIGINT, handler)
+    for number in (signal.SIGINT, signal.SIGTERM):
+        previous[number] = signal.signal(number, handler)
     try:
         yield flag
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for number, action in previous.items():
+            signal.signal(number, action)
 
 
 def print_run_summary(r: RunRecord, folder: Path, wall: float, console: Console) -> None:

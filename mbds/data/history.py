@@ -6,80 +6,177 @@ from __future__ import annotations
 import contextlib
 from pathlib import Path
 
+import netCDF4
 import numpy as np
 import xarray as xr
 
 from mbds import __version__
-from mbds.data.record import RunRecord
+from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
 from mbds.errors import ModelError
-from mbds.io.text import atomic_path
 from mbds.kernel import layout as K
 from mbds.simulation.run import RunState
 
 FILE_NAME = "history.nc"
 STATE_GROUP = "final_state"
 COMPRESSED = {"zlib": True, "complevel": 1, "shuffle": False}
-"""Deflate level 1, without byte shuffling, for the 2-D variables: the watch tables are mostly
-zeros, which this packs as small as level 4 with shuffling at half the cost of writing and reading."""
+"""Deflate level 1, without byte shuffling, for the time variables: the watch tables are mostly
+zeros, which this packs as small as level 4 with shuffling at half the cost of writing and reading
+(and the unused end of a run's last chunk packs to nothing)."""
 CLOCK_ENTRIES = (
     "time next_step next_sample steps impacts rejected_steps lost_work driver_work max_penetration "
     "lcp_failures over_penetrations last_penetration"
 )
 
 
-def write_history(path: str | Path, record: RunRecord) -> None:
-    """Write ``record`` to ``path`` atomically (through a temporary file and a rename)."""
-    root = dataset(record)
-    encoding = {name: dict(COMPRESSED) for name, v in root.data_vars.items() if v.ndim == 2 and v.size}
-    with atomic_path(path) as tmp:
-        root.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
-        state_dataset(record.final_state).to_netcdf(tmp, mode="a", group=STATE_GROUP, engine="netcdf4")
+CHUNK_VALUES = 32768
+"""Values per chunk of a time variable on disk (256 KiB): 64 to 4096 samples, fewer the more
+columns it has, so that the unused end of the last chunk of a short run stays small."""
 
 
-def dataset(record: RunRecord) -> xr.Dataset:
-    """The root group of ``history.nc``."""
-    r = record
+CHUNK_CACHE = 1 << 20
+"""Bytes of HDF5's chunk cache per time variable (4 chunks). The library's default, tens of MB
+per variable, adds up to gigabytes for a model with many variables and a long run."""
+
+
+class HistoryStream:
+    """``history.nc`` written while the run goes: :meth:`append` adds samples to its time
+    variables, :meth:`finish` its summary, attributes and final state. Write it in a temporary
+    file (see :func:`mbds.io.text.atomic_path`): until then the file is incomplete."""
+
+    def __init__(self, path: str | Path, header: RunHeader):
+        self.path, self.header = Path(path), header
+        static_dataset(header).to_netcdf(self.path, format="NETCDF4", engine="netcdf4")
+        self.file = netCDF4.Dataset(self.path, "a")
+        self.file.createDimension("time", None)
+        self.variables: dict[str, netCDF4.Variable] = {}
+        self.count = 0
+
+    def append(self, series: SampleSeries) -> None:
+        """Add ``series`` after the samples so far."""
+        count = len(series.time)
+        for name, (dims, values, attributes) in series_variables(self.header, series).items():
+            variable = self.variables.get(name) or self._create(name, dims, values, attributes)
+            variable[self.count : self.count + count] = values
+        self.count += count
+
+    def finish(self, record: RunRecord) -> None:
+        """Write what the run ended with: the per-point losses, the attributes and the exact
+        final state (group ``final_state``); the file is then complete."""
+        if not self.variables:  # no sample at all: the time variables exist, empty
+            self.append(empty_series(record))
+        for name, values, attributes in (
+            ("point_lost_work", record.point_lost_work, _cf("mechanical energy lost at the point in this run", "J")),
+            ("point_lost_work_smoothed", record.point_lost_work_smoothed, _cf(
+                "point_lost_work smoothed by smoothWorkLeftRight", "J",
+                half_width=record.options["smooth_work_left_right"])),
+        ):
+            variable = self.file.createVariable(name, "f8", ("point",), fill_value=np.nan)
+            variable.setncatts(attributes)
+            variable[:] = values
+        self.file.setncatts(_attributes(record))
+        self.file.close()
+        state_dataset(record.final_state, record.coordinate_units).to_netcdf(
+            self.path, mode="a", group=STATE_GROUP, engine="netcdf4")
+
+    def close(self) -> None:
+        """Release the file (after :meth:`finish`, or when the run failed)."""
+        if self.file.isopen():
+            self.file.close()
+
+    def _create(self, name: str, dims: tuple[str, ...], values: np.ndarray, attributes: dict) -> netCDF4.Variable:
+        columns = int(np.prod(values.shape[1:]))
+        shape = (min(max(CHUNK_VALUES // max(columns, 1), 64), 4096), *values.shape[1:])
+        options = {"chunksizes": shape, **COMPRESSED} if all(shape) else {}
+        fill = False if name == "time" else np.nan  # (as xarray writes an index coordinate)
+        variable = self.file.createVariable(name, "f8", dims, fill_value=fill, **options)
+        variable.set_var_chunk_cache(size=CHUNK_CACHE)
+        variable.setncatts(attributes)
+        self.variables[name] = variable
+        return variable
+
+
+def series_variables(header: RunHeader, s: SampleSeries) -> dict[str, tuple[tuple[str, ...], np.ndarray, dict]]:
+    """The time-dependent variables of ``history.nc`` (dimensions, values, attributes) for the
+    samples ``s``; ``time`` first."""
     tw, ts = ("time", "watch"), ("time", "coordinate")
-    kind, imp_units = ("force", "N") if r.watches.force else ("impulse", "N s")
+    kind, imp_units = ("force", "N") if header.force else ("impulse", "N s")
     since = "since the run's start"
+    out = {
+        "time": (("time",), s.time, _cf("time", "s", axis="T")),
+        "q": (ts, s.q, _per_coordinate("generalized coordinates", "coordinate_unit")),
+        "qd": (ts, s.qd, _per_coordinate("generalized velocities", "velocity_unit")),
+        "qdd": (ts, s.qdd, _per_coordinate("generalized accelerations", "acceleration_unit")),
+        "dependent_q": (("time", "dependent"), s.dependent_position,
+                        _per_coordinate("dependent coordinates (.dc)", "dependent_unit")),
+        "body_x": (("time", "body"), s.pose[:, :, 0], _cf("x of the body frame's origin", "m")),
+        "body_y": (("time", "body"), s.pose[:, :, 1], _cf("y of the body frame's origin", "m")),
+        "body_angle": (("time", "body"), s.pose[:, :, 2], _cf("rotation Rz of the body frame", "rad")),
+        "mechanical_energy": (("time",), s.energy, _cf("mechanical energy (.me expression)", "J")),
+        "lost_work": (("time",), s.lost_work, _cf(f"mechanical energy lost at contacts {since}", "J")),
+        "driver_work": (("time",), s.driver_work, _cf(f"work of rheonomic drivers {since}", "J")),
+    }
+    for direction, values in s.watches.impulse.items():
+        out[f"impulse_{direction}"] = (tw, values, _cf(f"{direction} {kind} at the watch per sample interval", imp_units))
+    if s.watches.work is not None:
+        what = since if header.options["cumulative_work"] else "per sample interval"
+        out["work"] = (tw, s.watches.work, _cf(f"mechanical energy lost at the watch {what}", "J"))
+    if s.watches.angle is not None:
+        out["angle"] = (tw, s.watches.angle, _cf("angle of the last contact normal to the x axis", "rad"))
+    if s.watches.t_div_n is not None:
+        out["t_div_n"] = (tw, s.watches.t_div_n, _cf("running ratio of summed tangential to normal impulse", "1"))
+    if s.watches.temperature is not None:
+        out["temperature"] = (tw, s.watches.temperature, _cf("contact temperature of the hottest watched point",
+                                                               "degree_Celsius"))
+    return out
+
+
+def static_dataset(h: RunHeader) -> xr.Dataset:
+    """The variables of ``history.nc`` that do not depend on time: names, units, bodies, shape
+    points and watches (the attributes come with the summary)."""
+    frames = ["xy" if a else "nt" for a in h.watch_absolute]
     data = {
-        "q": (ts, r.q, _cf("generalized coordinates", "m or rad")),
-        "qd": (ts, r.qd, _cf("generalized velocities", "m/s or rad/s")),
-        "qdd": (ts, r.qdd, _cf("generalized accelerations", "m/s2 or rad/s2")),
-        "mechanical_energy": ("time", r.energy, _cf("mechanical energy (.me expression)", "J")),
-        "lost_work": ("time", r.lost_work, _cf(f"mechanical energy lost at contacts {since}", "J")),
-        "driver_work": ("time", r.driver_work, _cf(f"work of rheonomic drivers {since}", "J")),
-        "shape_x": ("point", r.shape[:, 0], _cf("shape point x in the body frame", "m")),
-        "shape_y": ("point", r.shape[:, 1], _cf("shape point y in the body frame", "m")),
-        "point_lost_work": ("point", r.point_lost_work, _cf("mechanical energy lost at the point in this run", "J")),
-        "point_lost_work_smoothed": ("point", r.point_lost_work_smoothed, _cf(
-            "point_lost_work smoothed by smoothWorkLeftRight", "J", half_width=r.options["smooth_work_left_right"])),
+        "shape_x": ("point", h.shape[:, 0], _cf("shape point x in the body frame", "m")),
+        "shape_y": ("point", h.shape[:, 1], _cf("shape point y in the body frame", "m")),
     }
-    for direction, values in r.watches.impulse.items():
-        data[f"impulse_{direction}"] = (tw, values, _cf(f"{direction} {kind} at the watch per sample interval", imp_units))
-    if r.watches.work is not None:
-        what = since if r.options["cumulative_work"] else "per sample interval"
-        data["work"] = (tw, r.watches.work, _cf(f"mechanical energy lost at the watch {what}", "J"))
-    if r.watches.angle is not None:
-        data["angle"] = (tw, r.watches.angle, _cf("angle of the last contact normal to the x axis", "rad"))
-    if r.watches.t_div_n is not None:
-        data["t_div_n"] = (tw, r.watches.t_div_n, _cf("running ratio of summed tangential to normal impulse", "1"))
-    frames = ["xy" if a else "nt" for a in r.watch_absolute]
     coords = {
-        "time": ("time", r.time, _cf("time", "s", axis="T")),
-        "coordinate": ("coordinate", _text(r.coordinates), _named("generalized coordinate")),
-        "coordinate_unit": ("coordinate", _text(r.coordinate_units), _named("unit of the coordinate")),
-        "watch": ("watch", _text(r.watch_labels), _named("watch label")),
+        "coordinate": ("coordinate", _text(h.coordinates), _named("generalized coordinate")),
+        "coordinate_unit": ("coordinate", _text(h.coordinate_units), _named("UDUNITS unit of the coordinate")),
+        "velocity_unit": ("coordinate", _text([_rate(u, 1) for u in h.coordinate_units]),
+                          _named("UDUNITS unit of the coordinate's velocity")),
+        "acceleration_unit": ("coordinate", _text([_rate(u, 2) for u in h.coordinate_units]),
+                              _named("UDUNITS unit of the coordinate's acceleration")),
+        "dependent": ("dependent", _text(h.dependent), _named("dependent coordinate")),
+        "dependent_unit": ("dependent", _text(h.dependent_units), _named("UDUNITS unit of the dependent coordinate")),
+        "watch": ("watch", _text(h.watch_labels), _named("watch label")),
+        "watch_body": ("watch", _text(h.watch_body), _named("body of the watched points")),
+        "watch_first_point": ("watch", np.array([p[0] for p in h.watch_points], dtype=np.int32).reshape(-1),
+                              _named("first watched point (point_number)")),
+        "watch_last_point": ("watch", np.array([p[1] for p in h.watch_points], dtype=np.int32).reshape(-1),
+                             _named("last watched point (point_number)")),
         "watch_frame": ("watch", _text(frames), _named("frame of the legacy impulse columns (nt or xy)")),
-        "body": ("body", _text(r.bodies), _named("body name")),
-        "point_body": ("point", r.point_body.astype(np.int32), _named("index of the point's body")),
-        "point_number": ("point", r.point_number.astype(np.int32), _named("point number in its body's shape")),
+        "body": ("body", _text(h.bodies), _named("body name")),
+        "body_kind": ("body", _text(h.body_kind), _named("moving, fixed or virtual")),
+        "body_color": (("body", "rgb"), h.body_color, _named("RGBColor of the body (red, green, blue; 0-1)")),
+        "point_body": ("point", h.point_body.astype(np.int32), _named("index of the point's body")),
+        "point_body_name": ("point", _text([h.bodies[i] for i in h.point_body]), _named("name of the point's body")),
+        "point_number": ("point", h.point_number.astype(np.int32), _named("point number in its body's shape")),
     }
-    return xr.Dataset(data, coords=coords, attrs=_attributes(r))
+    return xr.Dataset(data, coords=coords)
 
 
 def _cf(long_name: str, units: str, **extra) -> dict:
     return {"long_name": long_name, "units": units, **extra}
+
+
+def _per_coordinate(long_name: str, unit_variable: str) -> dict:
+    """Attributes of a variable whose columns have different units: they are in ``unit_variable``."""
+    return {"long_name": long_name, "ancillary_variables": unit_variable,
+            "comment": f"each column's UDUNITS unit is in {unit_variable}"}
+
+
+def _rate(unit: str, order: int) -> str:
+    """The unit of the ``order``-th time derivative of a coordinate in ``unit``."""
+    return f"{unit} s-{order}" if unit != "1" else f"s-{order}"
 
 
 def _named(long_name: str) -> dict:
@@ -110,6 +207,7 @@ def _attributes(r: RunRecord) -> dict:
         "run_driver_work": r.run_driver_work,
         "energy_residual": r.energy_residual,
         "max_penetration": r.max_penetration,
+        "wall_time": r.wall_time,
         **r.counters,
         **{f"watch_{k}": v for k, v in r.options.items()},
         "input_files": " ".join(r.inputs),
@@ -118,13 +216,15 @@ def _attributes(r: RunRecord) -> dict:
     return attrs
 
 
-def state_dataset(state: RunState) -> xr.Dataset:
-    """The ``final_state`` group: the kernel state, exactly."""
+def state_dataset(state: RunState, units: list[str]) -> xr.Dataset:
+    """The ``final_state`` group: the kernel state, exactly; ``units`` of the coordinates."""
     columns = "impN impT impX impY work angle"
-    return xr.Dataset({
+    return xr.Dataset(attrs={"Conventions": "CF-1.10"}, data_vars={
         "clock": ("clock_entry", state.clock, {**_named("kernel clock and counters"), "entries": CLOCK_ENTRIES}),
-        "q": ("coordinate", state.q, _cf("generalized coordinates", "m or rad")),
-        "qd": ("coordinate", state.u, _cf("generalized velocities", "m/s or rad/s")),
+        "q": ("coordinate", state.q, _per_coordinate("generalized coordinates", "coordinate_unit")),
+        "qd": ("coordinate", state.u, _per_coordinate("generalized velocities", "velocity_unit")),
+        "coordinate_unit": ("coordinate", _text(units), _named("UDUNITS unit of the coordinate")),
+        "velocity_unit": ("coordinate", _text([_rate(u, 1) for u in units]), _named("UDUNITS unit of the velocity")),
         "rng": ("rng_word", state.rng, _named("state of the generator of lexicographic tolerances")),
         "point_loss": ("kernel_point", state.point_loss, _cf("lost work per kernel point (closing points too)", "J")),
         "point_interval": (("kernel_point", "point_column"), state.point_interval,
@@ -144,6 +244,8 @@ def read_final_state(path: str | Path) -> tuple[RunState, dict]:
             point_loss=ds["point_loss"].values.copy(),
             point_interval=ds["point_interval"].values.copy(),
         )
+    if state.point_interval.shape[1:] == (K.TEMP,):  # written before contact temperatures: none
+        state.point_interval = np.column_stack([state.point_interval, np.full(len(state.point_interval), np.nan)])
     if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
         raise ModelError("written by an incompatible mbds version (its state has another layout)", path)
     return state, read_attributes(path)

@@ -14,10 +14,12 @@ their column headers are lines 1 and 5 of ``log.txt``. The layout of ``log.txt``
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TextIO
 
 import numpy as np
 
-from mbds.data.record import RunRecord
+from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
+from mbds.data.watches import WatchSeries
 from mbds.io.text import write_atomic
 from mbds.kernel import layout as K
 from mbds.model.load import Model
@@ -27,52 +29,64 @@ SEPARATOR_LINE = "*" * 11
 HEADER_LINES = 6
 
 
-def data_header(record: RunRecord) -> list[str]:
+def data_header(header: RunHeader) -> list[str]:
     columns = ["time", "mechanicalEnergy"]
-    for name in record.coordinates:
+    for name in header.coordinates:
         columns += [name, f"{name}'", f'{name}"']
     return columns
 
 
-def data_table(record: RunRecord) -> np.ndarray:
-    r = record
-    parts = [r.time[:, None], r.energy[:, None]]
-    parts += [np.stack([r.q[:, k], r.qd[:, k], r.qdd[:, k]], axis=1) for k in range(r.q.shape[1])]
+def data_table(s: SampleSeries) -> np.ndarray:
+    parts = [s.time[:, None], s.energy[:, None]]
+    parts += [np.stack([s.q[:, k], s.qd[:, k], s.qdd[:, k]], axis=1) for k in range(s.q.shape[1])]
     return np.concatenate(parts, axis=1)
 
 
-def watch_columns(record: RunRecord) -> list[tuple[str, np.ndarray]]:
+def watch_columns(header: RunHeader, w: WatchSeries) -> list[tuple[str, np.ndarray]]:
     """(header, values over samples) of every watch column, in watches.txt order."""
-    w = record.watches
-    prefix = "force" if w.force else "imp"
+    prefix = "force" if header.force else "imp"
     out = []
-    for k, label in enumerate(record.watch_labels):
-        pair = (("X", "x"), ("Y", "y")) if record.watch_absolute[k] else (("N", "normal"), ("T", "tangential"))
+    for k, label in enumerate(header.watch_labels):
+        pair = (("X", "x"), ("Y", "y")) if header.watch_absolute[k] else (("N", "normal"), ("T", "tangential"))
         out += [(f"{label}-{prefix}{short}", w.impulse[name][:, k]) for short, name in pair]
         out.append((f"{label}-angle", w.angle[:, k]) if w.work is None else (f"{label}-work", w.work[:, k]))
         if w.t_div_n is not None:
             out.append((f"{label}-TdivN", w.t_div_n[:, k]))
+        if w.temperature is not None:
+            out.append((f"{label}-temperature", w.temperature[:, k]))
     return out
+
+
+def watch_table(header: RunHeader, s: SampleSeries) -> np.ndarray:
+    return np.stack([s.time] + [values for _, values in watch_columns(header, s.watches)], axis=1)
 
 
 def log_lines(record: RunRecord) -> list[str]:
     """The lines of ``log.txt`` (alerts from ``record.alerts``)."""
-    first = record.time[0] if len(record.time) else record.start_time
-    last = record.time[-1] if len(record.time) else record.start_time
-    watches = ["time"] + [name for name, _ in watch_columns(record)]
+    first = record.first_sample if record.samples else record.start_time
+    last = record.last_sample if record.samples else record.start_time
+    watches = ["time"] + [name for name, _ in watch_columns(record, empty_series(record).watches)]
     return [
         " ".join(data_header(record)), "", NUMBER % first, NUMBER % last, " ".join(watches), SEPARATOR_LINE,
         *record.alerts,
     ]
 
 
-def write_legacy(folder: str | Path, record: RunRecord) -> None:
-    """Write data.txt, watches.txt and log.txt into ``folder`` (each atomically)."""
-    folder = Path(folder)
-    watches = [record.time] + [values for _, values in watch_columns(record)]
-    write_atomic(folder / "data.txt", _table(data_table(record)))
-    write_atomic(folder / "watches.txt", _table(np.stack(watches, axis=1)))
-    write_atomic(folder / "log.txt", "\n".join(log_lines(record)) + "\n")
+class TableStreams:
+    """``data.txt`` and ``watches.txt`` written while the run goes, into the open files
+    ``data`` and ``watches`` (temporary files, renamed by the caller when the run has ended)."""
+
+    def __init__(self, header: RunHeader, data: TextIO, watches: TextIO):
+        self.header, self.data, self.watches = header, data, watches
+
+    def append(self, series: SampleSeries) -> None:
+        self.data.write(_table(data_table(series)))
+        self.watches.write(_table(watch_table(self.header, series)))
+
+
+def write_log(folder: str | Path, record: RunRecord) -> None:
+    """Write log.txt into ``folder`` (atomically)."""
+    write_atomic(Path(folder) / "log.txt", "\n".join(log_lines(record)) + "\n")
 
 
 def _table(values: np.ndarray) -> str:

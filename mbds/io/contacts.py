@@ -21,6 +21,8 @@ class ContactLaw:
     restitution_tangent: Located = setting("restitutionTangent", "expression", Located("0"))
     parameter_ni: Located = setting("parameterNi", "expression", Located("0"))
     initial_temperature: float = setting("initialTemperature", "number", 0.0)
+    heat_capacity: float = setting("heatCapacity", "number", 0.0, extension=True)  # J/°C per point; 0: none
+    cooling_time: float = setting("coolingTime", "number", 0.0, extension=True)  # s; 0: no cooling
 
 
 @dataclass

@@ -15,6 +15,7 @@ from typing import Any
 
 from mbds.errors import ModelError, warn
 from mbds.io.text import (
+    MAXINT,
     format_number,
     parse_flag,
     parse_integer,
@@ -80,17 +81,19 @@ def find_section(sections: list[Section], name: str) -> Section | None:
 # --- declared settings ---------------------------------------------------------------------
 
 
-def setting(key: str, kind: str, default: Any, *aliases: str):
-    """A dataclass field read from ``key`` (or an alias), parsed as ``kind``.
+def setting(key: str, kind: str, default: Any, *aliases: str, extension: bool = False):
+    """A dataclass field read from ``key`` (or an alias), parsed as ``kind``; an ``extension``
+    (a key of mbds, not of the original program) is written only when it is not at its default.
 
-    Kinds: ``number``, ``integer``, ``flag``, ``text``, ``expression`` (kept as :class:`Located`
+    Kinds: ``number``, ``integer``, ``minutes`` (a number, or ``MaxInt``), ``flag``, ``text``, ``expression`` (kept as :class:`Located`
     text), ``pair`` (two numbers ``a,b``), ``list`` (comma-separated names), ``numbers``
     (comma-separated numbers).
     """
     if isinstance(default, (list, tuple)):
         factory = (lambda d=default: type(d)(d))
-        return field(default_factory=factory, metadata={"key": key, "kind": kind, "aliases": aliases})
-    return field(default=default, metadata={"key": key, "kind": kind, "aliases": aliases})
+        return field(default_factory=factory, metadata={"key": key, "kind": kind, "aliases": aliases,
+                                                         "extension": extension})
+    return field(default=default, metadata={"key": key, "kind": kind, "aliases": aliases, "extension": extension})
 
 
 def _parse_value(kind: str, entry: Entry, file, separator: str):
@@ -99,6 +102,8 @@ def _parse_value(kind: str, entry: Entry, file, separator: str):
         return parse_number(value, file, line, separator)
     if kind == "integer":
         return parse_integer(value, file, line)
+    if kind == "minutes":
+        return MAXINT if value.strip().lower() == "maxint" else parse_number(value, file, line, separator)
     if kind == "flag":
         return parse_flag(value, file, line)
     if kind == "text":
@@ -129,6 +134,8 @@ def _format_value(kind: str, value, separator: str) -> str:
     delimiter = ";" if separator == "," else ","
     if kind == "number":
         return format_number(value, separator)
+    if kind == "minutes":
+        return "MaxInt" if value == MAXINT else format_number(value, separator)
     if kind == "flag":
         return "1" if value else "0"
     if kind in ("pair", "numbers"):
@@ -169,7 +176,7 @@ def format_settings(obj, separator: str = ".", *, skip_defaults: bool = False) -
         if "key" not in f.metadata:
             continue
         value = getattr(obj, f.name)
-        if skip_defaults and _is_default(f, value):
+        if (skip_defaults or f.metadata.get("extension")) and _is_default(f, value):
             continue
         lines.append(f"{f.metadata['key']} = {_format_value(f.metadata['kind'], value, separator)}")
     return lines

@@ -21,17 +21,18 @@ from mbds.io.text import MAXINT, read_text
 
 @dataclass
 class JobSettings:
-    """The ``[main]`` section of a job file, with the manual's defaults (times in minutes)."""
+    """The ``[main]`` section of a job file, with the manual's defaults (times in minutes, which
+    may be fractional: ``delayStartMinutes = 0.05`` waits 3 s)."""
 
     world_file: str = setting("worldFile", "text", "")
     jobs: str = setting("jobs", "text", "")
     lexico_randomization_range: tuple = setting("lexicoRandomizationRange", "pair", (0.0, 0.0))
     create_next_version_at_end: bool = setting("createNextVersionAtEnd", "flag", False)
     max_lines_in_log: int = setting("maxLinesInLog", "integer", 0)
-    max_minutes_for_job: int = setting("maxMinutesForJob", "integer", MAXINT)
-    max_minutes_for_jobs: int = setting("maxMinutesForJobs", "integer", MAXINT)
+    max_minutes_for_job: float = setting("maxMinutesForJob", "minutes", MAXINT)
+    max_minutes_for_jobs: float = setting("maxMinutesForJobs", "minutes", MAXINT)
     frames_per_second: int = setting("framesPerSecond", "integer", 0)
-    delay_start_minutes: int = setting("delayStartMinutes", "integer", 0)
+    delay_start_minutes: float = setting("delayStartMinutes", "minutes", 0)
     exit_at_finish: bool = setting("exitAtFinish", "flag", False)
 
 

@@ -1,4 +1,10 @@
-"""World files (``.wld``): simulation settings, file names and the list of bodies."""
+"""World files (``.wld``): simulation settings, file names and the list of bodies.
+
+mbds extension: a ``[generalizedStart]`` section gives free coordinates their start values,
+``g'name = position[, velocity]`` (m or rad; m/s or rad/s; expressions of constants). Without
+it, or for a free coordinate it does not list, the coordinate starts at 0 with velocity 0, as
+in the original program.
+"""
 
 from __future__ import annotations
 
@@ -16,6 +22,8 @@ from mbds.io.ini import (
 )
 from mbds.io.text import significant_lines
 
+GENERALIZED_START = "generalizedStart"
+
 
 @dataclass
 class WorldSettings:
@@ -23,8 +31,9 @@ class WorldSettings:
 
     decimal_separator: str = setting("decimalSeparator", "text", ".")
     working_directory: str = setting("workingDirectory", "text", "current")
+    # written in the manual's own spelling, the one the original program reads
     number_of_coordinates: int = setting(
-        "numberOfGeneralizedCoordinates", "integer", 1, "numberOfGeneralizedCoodinates"
+        "numberOfGeneralizedCoodinates", "integer", 1, "numberOfGeneralizedCoordinates"
     )
     lcp_pivot_tolerance_min: float = setting("LCPPivotToleranceMin", "number", 1e-14)
     lcp_pivot_tolerance_max: float = setting("LCPPivotToleranceMax", "number", 1e-10)
@@ -60,6 +69,7 @@ class WorldFile:
     settings: WorldSettings = field(default_factory=WorldSettings)
     bodies: list[Located] = field(default_factory=list)
     path: Path | None = field(default=None, compare=False)
+    generalized_start: list[tuple[str, Located]] = field(default_factory=list)  # (g'name, "position[, velocity]")
 
     @property
     def directory(self) -> Path:
@@ -93,7 +103,7 @@ def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
         raise ModelError(f"decimalSeparator must be '.' or ',', not '{separator}'", path)
     sections = parse_ini(text, path)
     for s in sections:
-        if s.name.lower() not in ("main", "bodies"):
+        if s.name.lower() not in ("main", "bodies", GENERALIZED_START.lower()):
             warn(f"unknown section [{s.name}] (ignored)", path, s.line)
     main = find_section(sections, "main")
     if main is None:
@@ -115,7 +125,9 @@ def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
     for e, b in zip(bodies_section.entries if bodies_section else [], bodies):
         if not b.text:
             raise ModelError(f"'{e.key}' names no body file", path, e.line)
-    return WorldFile(settings, bodies, Path(path) if path else None)
+    start = find_section(sections, GENERALIZED_START)
+    generalized_start = [(e.key, Located(e.value, e.line)) for e in start.entries] if start else []
+    return WorldFile(settings, bodies, Path(path) if path else None, generalized_start)
 
 
 def _key(field_name: str) -> str:
@@ -134,4 +146,6 @@ def format_world(world: WorldFile) -> str:
     sep = world.settings.decimal_separator
     lines = ["[main]", *format_settings(world.settings, sep), "[bodies]"]
     lines += [f"body{i} = {b.text}" for i, b in enumerate(world.bodies, start=1)]
+    if world.generalized_start:
+        lines += [f"[{GENERALIZED_START}]", *(f"{key} = {value.text}" for key, value in world.generalized_start)]
     return "\n".join(lines) + "\n"

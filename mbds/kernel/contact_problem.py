@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from mbds.kernel.events import log_event
+from mbds.kernel.heat import contact_temperature
 from mbds.kernel.jit import jit
 from mbds.kernel.layout import (
     DT_MAX,
@@ -32,6 +33,7 @@ from mbds.kernel.layout import (
 )
 from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row
+from mbds.kernel.rollback import edge_end_point
 
 REST_FRACTION = 0.01
 """A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
@@ -145,13 +147,17 @@ def _contact_law(contact_law, k, vrel, temperature, p, out):
 
 
 @jit(inline="always")
-def contact_laws(contact_law, nc, contacts, model, rows, events, t):
-    """Friction and restitution coefficients of every contact at its current sliding speed."""
+def contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t):
+    """Friction and restitution coefficients of every contact at its current sliding speed and
+    temperature (see mbds.kernel.heat)."""
     for i in range(nc):
         pair = contacts.pair[i]
         speed = abs(rows.gd_t[i])
-        if not _contact_law(contact_law, model.pair_law[pair], speed, model.pair_temperature[pair], model.p,
-                            rows.law_out):
+        edge = contacts.edge[i]
+        temperature = contact_temperature(model, pair, contacts.vertex[i], edge,
+                                          edge_end_point(edge, contacts.eb[i], model.point_start), contacts.xi[i],
+                                          point_interval)
+        if not _contact_law(contact_law, model.pair_law[pair], speed, temperature, model.p, rows.law_out):
             log_event(events, t, EVENT_BAD_LAW, float(pair), speed)
         for j in range(4):
             rows.laws[i, j] = rows.law_out[j]

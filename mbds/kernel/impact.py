@@ -17,7 +17,7 @@ from mbds.kernel.rollback import record
 
 
 @jit
-def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, point_start, point_loss,
+def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
            point_interval, back, events, t):
     """Compression and expansion LCPs over all closed contacts; updates u (and the relative
     velocities rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when
@@ -89,7 +89,7 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, poi
         loss = compression_loss[c] - 0.5 * (lam_ne[c] * (gam_n[c] + gd_n[c]) + lam_te[c] * (gam_t[c] + gd_t[c]))
         lost += loss
         drive -= (imp_n[c] + lam_ne[c]) * rows.what_n[c] + (imp_t[c] + lam_te[c]) * rows.what_t[c]
-        record(contacts, c, imp_n[c] + lam_ne[c], imp_t[c] + lam_te[c], loss, point_start, point_loss,
+        record(contacts, c, imp_n[c] + lam_ne[c], imp_t[c] + lam_te[c], loss, model, point_loss,
                point_interval, back)
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive

@@ -11,22 +11,28 @@ from collections import namedtuple
 
 import numpy as np
 
-# settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags
+# settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags; the passes
+# of the step loop one call of advance may make before it returns (so callers look at Ctrl-C,
+# time limits and progress at least that often)
 DT_MIN, DT_MAX, MAX_PEN, ZERO_VELOCITY, PIVOT_MIN, PIVOT_MAX, LEXICO, LEXICO_LOW, LEXICO_HIGH = range(9)
-GO_BACK, SAMPLE_EVERY, SAMPLE_AT_COLLISION, SAMPLE_EACH_STEP, MAX_PIVOTS, SETTINGS = range(9, 15)
+GO_BACK, SAMPLE_EVERY, SAMPLE_AT_COLLISION, SAMPLE_EACH_STEP, MAX_PIVOTS, PASSES_PER_CALL, SETTINGS = range(9, 16)
 
 # clock array: time and step (s), counters, lost and drive work (J), penetrations (m)
 T, DT, NEXT_SAMPLE, STEPS, IMPACTS, REJECTED, LOST, DRIVE_WORK, MAX_PENETRATION = range(9)
 LCP_FAILURES, OVER_PENETRATIONS, LAST_PENETRATION, CLOCK = range(9, 13)
 
 # statuses of advance
-REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE = range(5)
+REACHED, HISTORY_FULL, EVENTS_FULL, CAPACITY, NOT_FINITE, PASSES_DONE = range(6)
 
 # event codes (events array rows: time, code, value, value)
 EVENT_LCP_RAY, EVENT_LCP_MAX_PIVOTS, EVENT_LCP_FAILURE, EVENT_OVER_PENETRATION, EVENT_BAD_LAW, EVENT_SINGULAR_MASS = range(6)
 
-# columns of per-point accumulators: impulses (N s), lost work (J), contact angle (rad)
-IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, POINT_COLUMNS = range(7)
+# columns of per-point values: impulses (N s) and lost work (J) since the last sample, the last
+# contact angle (rad), the temperature (deg C; NaN where no contact pair has a temperature model)
+IMP_N, IMP_T, IMP_X, IMP_Y, WORK, ANGLE, TEMP, POINT_COLUMNS = range(8)
+
+# columns of the per-point heat model: heating (deg C per J), cooling rate (1/s), ambient (deg C)
+HEATING, COOLING, AMBIENT, HEAT_COLUMNS = range(4)
 
 # float columns of the per-contact records kept for going back (integer columns: vertex,
 # edge start and edge end points; the closing point of a shape is never used)
@@ -35,7 +41,7 @@ R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = rang
 ModelArrays = namedtuple(
     "ModelArrays",
     "binding binding_index start_pose carrier offset points point_start skin factor radius "
-    "pair_bodies pair_law pair_resisting pair_temperature watch_start watch_points p",
+    "pair_bodies pair_law pair_resisting pair_temperature pair_heated point_heat watch_start watch_points p",
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
@@ -63,10 +69,13 @@ Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
 phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
 
-Rollback = namedtuple("Rollback", "q u clock records_int records_float record_count last_sample cap tracked")
-"""The starts of the last two steps (slot 1: the last, 0: the one before) and their contact
-records, for going back; the time of the last history sample (s); the longest next step (s)
-after a step was rejected; how many contacts of the last step are checked at its end."""
+Rollback = namedtuple(
+    "Rollback", "q u clock temperature records_int records_float record_count last_sample cap tracked",
+)
+"""The starts of the last two steps (slot 1: the last, 0: the one before: coordinates, clock
+and point temperatures) and their contact records, for going back; the time of the last
+history sample (s); the longest next step (s) after a step was rejected; how many contacts of
+the last step are checked at its end."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -99,7 +108,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     rollback = Rollback(
-        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
+        f((2, n)), f((2, n)), f((2, CLOCK)), f((2, points)), f((2, 2 * c, 3), i), f((2, 2 * c, RECORD_COLUMNS)),
         np.full(2, -1, dtype=i), np.full(1, -np.inf), np.full(1, np.inf), f(1, i),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)

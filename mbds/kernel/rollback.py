@@ -12,6 +12,7 @@ import numpy as np
 from mbds.kernel.jit import jit
 from mbds.kernel.layout import (
     ANGLE,
+    HEATING,
     IMP_N,
     IMP_T,
     IMP_X,
@@ -29,29 +30,33 @@ from mbds.kernel.layout import (
     R_XI,
     REJECTED,
     STEPS,
+    TEMP,
     WORK,
 )
 
 
 @jit(inline="always")
-def record(contacts, i, imp_n, imp_t, loss, point_start, point_loss, point_interval, back):
+def record(contacts, i, imp_n, imp_t, loss, model, point_loss, point_interval, back):
     """Add contact i's impulses (N s) and lost work (J) of this step to its points, and keep
     the record so that going back can take it out again.
 
     The vertex point gets all of it; the edge's two points share it as (1 - xi, xi), with the
     impulse reversed (the reaction). Impulses are normal-tangential (n out of the edge body,
-    t = (-n_y, n_x)) and x-y, as acting on the watched point's body.
+    t = (-n_y, n_x)) and x-y, as acting on the watched point's body. Points with a heat model
+    (model.point_heat) warm by their share of the loss times their HEATING (deg C per J).
     """
+    point_start, point_heat = model.point_start, model.point_heat
     vertex = contacts.vertex[i]
     edge = contacts.edge[i]
-    edge_end = _edge_end(edge, contacts.eb[i], point_start)
+    edge_end = edge_end_point(edge, contacts.eb[i], point_start)
     xi = contacts.xi[i]
     nx = contacts.normal[i, 0]
     ny = contacts.normal[i, 1]
     imp_x = imp_n * nx - imp_t * ny
     imp_y = imp_n * ny + imp_t * nx
     angle = np.arctan2(ny, nx)
-    _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, 1.0, point_loss, point_interval)
+    _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, 1.0, point_heat, point_loss,
+                 point_interval)
     records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
     k = max(record_count[1], 0)
     if k < records_int.shape[1]:
@@ -72,32 +77,38 @@ def record(contacts, i, imp_n, imp_t, loss, point_start, point_loss, point_inter
 
 
 @jit(inline="always")
-def _edge_end(edge, body, point_start):
+def edge_end_point(edge, body, point_start):
     """The point an edge ends at: the next point, or the body's first for its closing edge."""
     end = edge + 1
     return point_start[body] if end == point_start[body + 1] - 1 else end
 
 
 @jit(inline="always")
-def _take_out(records_int, records_float, slot, k, point_loss, point_interval):
+def _take_out(records_int, records_float, slot, k, point_heat, point_loss, point_interval):
     """Take record k of ``slot`` out of the per-point accumulators."""
     r = records_float
     _add_contact(records_int[slot, k, 0], records_int[slot, k, 1], records_int[slot, k, 2], r[slot, k, R_XI],
                  r[slot, k, R_IMP_N], r[slot, k, R_IMP_T], r[slot, k, R_IMP_X], r[slot, k, R_IMP_Y],
-                 r[slot, k, R_LOSS], r[slot, k, R_ANGLE], -1.0, point_loss, point_interval)
+                 r[slot, k, R_LOSS], r[slot, k, R_ANGLE], -1.0, point_heat, point_loss, point_interval)
 
 
 @jit(inline="always")
-def _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, scale, point_loss, point_interval):
+def _add_contact(vertex, edge, edge_end, xi, imp_n, imp_t, imp_x, imp_y, loss, angle, scale, point_heat, point_loss,
+                 point_interval):
     """Add (scale 1) or take out (scale -1) a contact's share at its vertex and edge points."""
-    _add_point(vertex, scale, 1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
-    _add_point(edge, (1.0 - xi) * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
-    _add_point(edge_end, xi * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval)
+    _add_point(vertex, scale, 1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_heat, point_loss, point_interval)
+    _add_point(edge, (1.0 - xi) * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_heat, point_loss,
+               point_interval)
+    _add_point(edge_end, xi * scale, -1.0, imp_n, imp_t, imp_x, imp_y, loss, angle, point_heat, point_loss,
+               point_interval)
 
 
 @jit(inline="always")
-def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle, point_loss, point_interval):
+def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle, point_heat, point_loss,
+               point_interval):
     point_loss[point] += share * loss
+    if point_heat[point, HEATING] > 0.0:
+        point_interval[point, TEMP] += share * loss * point_heat[point, HEATING]
     point_interval[point, IMP_N] += share * imp_n
     point_interval[point, IMP_T] += share * direction * imp_t
     point_interval[point, IMP_X] += share * direction * imp_x
@@ -108,8 +119,9 @@ def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle,
 
 
 @jit
-def begin_step(q, u, clock, back):
-    """Keep the start of this step (slot 1) and of the previous one (slot 0) for going back."""
+def begin_step(q, u, clock, point_interval, heated, back):
+    """Keep the start of this step (slot 1) and of the previous one (slot 0) for going back
+    (with the point temperatures when ``heated``)."""
     records_int, records_float, record_count = back.records_int, back.records_float, back.record_count
     if record_count[1] >= 0:
         for k in range(record_count[1]):
@@ -122,23 +134,33 @@ def begin_step(q, u, clock, back):
             back.u[0, k] = back.u[1, k]
         for k in range(clock.shape[0]):
             back.clock[0, k] = back.clock[1, k]
+        if heated:
+            for k in range(point_interval.shape[0]):
+                back.temperature[0, k] = back.temperature[1, k]
     record_count[0] = record_count[1]
     for k in range(q.shape[0]):
         back.q[1, k] = q[k]
         back.u[1, k] = u[k]
     for k in range(clock.shape[0]):
         back.clock[1, k] = clock[k]
+    if heated:
+        for k in range(point_interval.shape[0]):
+            back.temperature[1, k] = point_interval[k, TEMP]
     record_count[1] = 0
 
 
 @jit
-def go_back(slot, q, u, clock, point_loss, point_interval, back):
+def go_back(slot, q, u, clock, model, point_loss, point_interval, back):
     """Return to the start of the step kept in ``slot`` (1: the last step, 0: the one before),
-    taking the records of the steps undone out of the accumulators; counters keep counting."""
+    taking the records of the steps undone out of the accumulators and restoring the point
+    temperatures; counters keep counting."""
     record_count = back.record_count
     for s in range(1, slot - 1, -1):
         for k in range(max(record_count[s], 0)):
-            _take_out(back.records_int, back.records_float, s, k, point_loss, point_interval)
+            _take_out(back.records_int, back.records_float, s, k, model.point_heat, point_loss, point_interval)
+    if model.pair_heated.any():
+        for k in range(point_interval.shape[0]):
+            point_interval[k, TEMP] = back.temperature[slot, k]
     keep = np.empty(6)
     for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
         keep[j] = clock[c]
@@ -151,3 +173,4 @@ def go_back(slot, q, u, clock, point_loss, point_interval, back):
         clock[c] = keep[j]
     record_count[0] = -1
     record_count[1] = -1
+

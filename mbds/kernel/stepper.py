@@ -50,6 +50,7 @@ from mbds.kernel.detection import (
     world_points,
 )
 from mbds.kernel.events import log_event
+from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
 from mbds.kernel.kinematics import body_states, contact_kinematics
@@ -76,6 +77,8 @@ from mbds.kernel.layout import (
     NEXT_SAMPLE,
     NOT_FINITE,
     OVER_PENETRATIONS,
+    PASSES_DONE,
+    PASSES_PER_CALL,
     REACHED,
     REJECTED,
     SAMPLE_AT_COLLISION,
@@ -107,7 +110,12 @@ def advance(
     bodies, contacts, rows, dyn, pb, forces, back = ws
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
+    heated = model.pair_heated.any()
+    passes = 0.0
     while True:
+        passes += 1.0
+        if passes > settings[PASSES_PER_CALL]:  # the loop resumes here on the next call, unchanged
+            return PASSES_DONE
         t = clock[T]
         for k in range(n):
             if not (np.isfinite(q[k]) and np.isfinite(u[k])):
@@ -135,7 +143,7 @@ def advance(
         if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[1] >= 0:
             taken = t - back.clock[1, T]
             if taken > settings[DT_MIN] * 1.000001:
-                go_back(1, q, u, clock, point_loss, point_interval, back)
+                go_back(1, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 back.cap[0] = 0.5 * taken
                 back.tracked[0] = 0
@@ -152,7 +160,7 @@ def advance(
                 return HISTORY_FULL
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
-                contact_laws(contact_law, nc, contacts, model, rows, events, t)
+                contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
                 contact_directions(rows, dyn, nc)
                 contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
@@ -167,13 +175,13 @@ def advance(
             return REACHED
         if events.count[0] + 8 > events.data.shape[0]:
             return EVENTS_FULL
-        begin_step(q, u, clock, back)
+        begin_step(q, u, clock, point_interval, heated, back)
         if settings[LEXICO_HIGH] > 0.0:
             tol_lex = uniform(rng, settings[LEXICO_LOW], settings[LEXICO_HIGH])
         else:
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
-        contact_laws(contact_law, nc, contacts, model, rows, events, t)
+        contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
         contact_directions(rows, dyn, nc)
         # --- 4: impact
         impacting = False
@@ -185,7 +193,7 @@ def advance(
                 counted = counted or rows.gd_n[i] < -rest
         solved = True
         if impacting:
-            solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model.point_start,
+            solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
                             point_loss, point_interval, back, events, t)
         if counted:
             clock[IMPACTS] += 1.0
@@ -196,7 +204,7 @@ def advance(
         if not solved:
             clock[LCP_FAILURES] += 1.0
             if settings[GO_BACK] > 0.0 and back.record_count[0] >= 0 and back.clock[0, DT] > settings[DT_MIN] * 1.000001:
-                go_back(0, q, u, clock, point_loss, point_interval, back)
+                go_back(0, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 back.tracked[0] = 0
                 continue
@@ -213,6 +221,8 @@ def advance(
         _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
               t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
         back.tracked[0] = nc
+        if heated:
+            cool(model.point_heat, point_interval, dt)
         clock[STEPS] += 1.0
         if counted and settings[SAMPLE_AT_COLLISION] > 0.0:
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
@@ -283,7 +293,7 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         drive -= lam_n[i] * what_n[i] + lam_t[i] * what_t[i]
         record(contacts, i, 0.5 * dt * (lam_n1[i] + lam_n[i]), 0.5 * dt * (lam_t1[i] + lam_t[i]),
                -0.5 * dt * (lam_n1[i] * gam_n[i] + lam_t1[i] * gam_t[i] + lam_n[i] * gd_n[i] + lam_t[i] * gd_t[i]),
-               model.point_start, point_loss, point_interval, back)
+               model, point_loss, point_interval, back)
     for k in range(n):
         q[k] += 0.5 * dt * (u[k] + u_star[k])
         u[k] += 0.5 * dt * (a1[k] + a2[k])

@@ -6,6 +6,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from mbds.kernel.layout import AMBIENT, COOLING, HEAT_COLUMNS, HEATING
 from mbds.model.load import Model
 
 
@@ -21,7 +22,10 @@ class KernelArrays:
     distance from the body origin). Shapes: ``points`` (P, 2) body-frame points of all bodies
     (closing point included) with ``point_start`` (nb + 1,) offsets.
     Pairs (``np``): ``pair_bodies`` (np, 2), ``pair_law`` (np,), ``pair_resisting`` (np, 2)
-    booleans, ``pair_temperature`` (np,) initial contact temperature (deg C).
+    booleans, ``pair_temperature`` (np,) initial contact temperature (deg C), ``pair_heated``
+    (np,) whether the pair has a temperature model, ``point_heat`` (P, HEAT_COLUMNS) each
+    point's heating (deg C per J), cooling rate (1/s) and ambient temperature (deg C) from its
+    body's heated pairs (0 where none).
     Watches (``nw``): ``watch_body`` (nw,), ``watch_absolute`` (nw,), indices into ``points``
     ``watch_points`` with ``watch_start`` (nw + 1,) offsets.
     State and parameters: ``q0``, ``qd0`` (n,), ``parameters`` (p,).
@@ -44,6 +48,8 @@ class KernelArrays:
     pair_law: np.ndarray
     pair_resisting: np.ndarray
     pair_temperature: np.ndarray
+    pair_heated: np.ndarray
+    point_heat: np.ndarray
     watch_body: np.ndarray
     watch_absolute: np.ndarray
     watch_points: np.ndarray
@@ -81,6 +87,8 @@ def flatten(model: Model) -> KernelArrays:
         pair_law=np.array([p.law for p in model.pairs], dtype=np.int64),
         pair_resisting=np.array([p.resisting for p in model.pairs], dtype=np.bool_).reshape(-1, 2),
         pair_temperature=np.array([p.initial_temperature for p in model.pairs], dtype=float),
+        pair_heated=np.array([p.heated for p in model.pairs], dtype=np.bool_),
+        point_heat=point_heat(model, start),
         watch_body=np.array([w.body for w in watches], dtype=np.int64),
         watch_absolute=np.array([w.absolute for w in watches], dtype=np.bool_),
         watch_points=np.array([p for group in watch_points for p in group], dtype=np.int64),
@@ -90,3 +98,17 @@ def flatten(model: Model) -> KernelArrays:
         parameters=model.parameters.values.copy(),
     )
 
+
+
+def point_heat(model: Model, point_start: np.ndarray) -> np.ndarray:
+    """(P, HEAT_COLUMNS): the heat model of every point, from its body's heated pairs (see
+    mbds.kernel.heat). Each of the two touching points takes half of the energy lost, so a
+    point warms by 1 / (2 heatCapacity) deg C per J booked on it."""
+    heat = np.zeros((int(point_start[-1]), HEAT_COLUMNS))
+    for pair in (p for p in model.pairs if p.heated):
+        for body in (pair.first, pair.second):
+            rows = heat[point_start[body] : point_start[body + 1]]
+            rows[:, HEATING] = 0.5 / pair.heat_capacity
+            rows[:, COOLING] = 1.0 / pair.cooling_time if pair.cooling_time > 0.0 else 0.0
+            rows[:, AMBIENT] = pair.initial_temperature
+    return heat

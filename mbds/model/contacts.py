@@ -28,6 +28,12 @@ class ContactPair:
     resisting: tuple[bool, bool]
     initial_temperature: float
     sections: tuple[str, ...]
+    heat_capacity: float = 0.0  # J/°C of each point's share of the heat; 0: no temperature model
+    cooling_time: float = 0.0  # s; 0: the points do not cool
+
+    @property
+    def heated(self) -> bool:
+        return self.heat_capacity > 0.0
 
 
 def law_key(law: ContactLaw) -> tuple[str, str, str, str]:
@@ -66,8 +72,30 @@ def assemble_contacts(files: ModelFiles, bodies: list[Body]) -> tuple[list[Conta
                 keys.append(law_key(law))
                 laws.append(law)
             titles = tuple(s.title for s in applying)
-            pairs.append(ContactPair(a, b, keys.index(law_key(law)), resisting, law.initial_temperature, titles))
+            for value, key in ((law.heat_capacity, "heatCapacity"), (law.cooling_time, "coolingTime")):
+                if not value >= 0.0:
+                    raise ModelError(f"{key} = {value:g} of {names[0]}-{names[1]}: must be 0 or more", cop.path,
+                                     applying[-1].line)
+            pairs.append(ContactPair(a, b, keys.index(law_key(law)), resisting, law.initial_temperature, titles,
+                                     law.heat_capacity, law.cooling_time))
+    _check_heat_models(pairs, bodies, cop)
     return pairs, laws
+
+
+def _check_heat_models(pairs: list[ContactPair], bodies: list[Body], cop) -> None:
+    """A body's points have one temperature: every heated pair of a body must give it the same
+    heatCapacity, coolingTime and initialTemperature."""
+    seen: dict[int, ContactPair] = {}
+    for pair in (p for p in pairs if p.heated):
+        model = (pair.heat_capacity, pair.cooling_time, pair.initial_temperature)
+        for body in (pair.first, pair.second):
+            other = seen.setdefault(body, pair)
+            if (other.heat_capacity, other.cooling_time, other.initial_temperature) != model:
+                line = next((s.line for s in cop.sections if s.title == pair.sections[-1]), None)
+                raise ModelError(
+                    f"body '{bodies[body].name}' has two temperature models: [{other.sections[-1]}] and "
+                    f"[{pair.sections[-1]}] give heatCapacity, coolingTime or initialTemperature differently",
+                    cop.path, line)
 
 
 def _can_touch(bodies: list[Body], a: int, b: int) -> bool:

@@ -4,7 +4,8 @@ Every expression is parsed with its file and line, and every name it uses is che
 must be in the ``.cns`` file, bodies in the world, free coordinates in the ``.gc`` file;
 ``temp`` and ``vRel`` only appear in contact-property functions. The parameter array ``p`` of the
 compiled functions holds, in this order: the constants (``.cns`` order), each non-virtual
-body's mass and Jzz, and the values of fixed pose coordinates.
+body's mass and Jzz, the values of fixed pose coordinates, and the numbers written in the contact
+laws (see :func:`lift_law_numbers`).
 """
 
 from __future__ import annotations
@@ -154,6 +155,7 @@ def gather_expressions(files: ModelFiles, bodies: list[Body], laws: list[Contact
                 files.contacts.path,
                 law.parameter_ni.line,
             )
+    contact_laws = lift_law_numbers(contact_laws, params)
     expressions = ModelExpressions(
         coordinates=coordinates,
         parameters=params.symbols,
@@ -165,6 +167,31 @@ def gather_expressions(files: ModelFiles, bodies: list[Body], laws: list[Contact
         contact_laws=contact_laws,
     )
     return expressions, params
+
+
+def lift_law_numbers(laws: list[tuple], params: Parameters) -> list[tuple]:
+    """The contact laws with their numbers replaced by parameters appended to ``params``.
+
+    A law that is a number (``friction = 0.3``, ``restitutionNormal = 1``) and every
+    floating-point number inside a law (``0.3 - 0.001*temp``) becomes an entry of ``p``, so
+    models that differ only in these numbers generate the same code and share one compiled
+    module. Integers and fractions inside a law (powers, ``1/2``) stay in the code.
+    """
+    symbols, values, lifted = [], [], []
+    for k, law in enumerate(laws):
+        fields = []
+        for field, expr in enumerate(law):
+            numbers = [expr] if expr.is_Number else [a for a in sympy.preorder_traversal(expr) if a.is_Float]
+            replace = {}
+            for number in dict.fromkeys(numbers):
+                replace[number] = sympy.Symbol(f"law`{k + 1}`{field}`{len(replace)}", real=True)
+                symbols.append(replace[number])
+                values.append(float(number))
+            fields.append(expr.xreplace(replace))
+        lifted.append(tuple(fields))
+    params.symbols.extend(symbols)
+    params.values = np.concatenate([params.values, np.array(values, dtype=float)])
+    return lifted
 
 
 def _dependent(c, coordinates, reader: ExpressionReader, path) -> DependentCoordinate:

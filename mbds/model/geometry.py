@@ -52,7 +52,7 @@ def polygon_problems(points: np.ndarray, tolerance: float = 0.0) -> list[str]:
         return ["a point coordinate is not finite"]
     if not np.allclose(points[0], points[-1], rtol=0.0, atol=tolerance):
         last = len(points) - 1
-        problems.append(f"not closed: point 0 {tuple(points[0])} differs from point {last} {tuple(points[-1])}")
+        problems.append(f"not closed: point 0 {tuple(points[0].tolist())} differs from point {last} {tuple(points[-1].tolist())}")
         return problems
     edges = np.diff(points, axis=0)
     short = np.flatnonzero(np.hypot(edges[:, 0], edges[:, 1]) <= tolerance)
@@ -65,7 +65,7 @@ def polygon_problems(points: np.ndarray, tolerance: float = 0.0) -> list[str]:
         m = len(points) - 1
         problems.append(
             f"self-intersecting: edge {a}-{(a + 1) % m} crosses edge {b}-{(b + 1) % m} "
-            f"(near {tuple(np.round(points[b], 12))})"
+            f"(near {tuple(np.round(points[b], 12).tolist())})"
         )
     area = polygon_properties(points).area
     if area <= 0.0:

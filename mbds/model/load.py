@@ -11,8 +11,9 @@ from mbds.errors import ModelError
 from mbds.expr import symbols as S
 from mbds.expr.codegen import CompiledModel, ModelExpressions, compile_model
 from mbds.io.contacts import ContactLaw
-from mbds.io.coordinates import CoordinateName
+from mbds.io.coordinates import CoordinateName, parse_coordinate_name
 from mbds.io.folder import ModelFiles, read_model_files
+from mbds.io.ini import Located, split_list
 from mbds.model.bodies import GENERALIZED, POSE, Body, assemble_bodies
 from mbds.model.contacts import ContactPair, assemble_contacts
 from mbds.model.equations import ExpressionReader, Parameters, gather_expressions
@@ -102,7 +103,32 @@ def _start_state(files: ModelFiles, bodies: list[Body]) -> tuple[np.ndarray, np.
                 k = body.binding_index[axis]
                 q0[k] = body.start_position[axis]
                 qd0[k] = body.start_velocity[axis]
+    _generalized_start(files, bodies, q0, qd0)
     return q0, qd0
+
+
+def _generalized_start(files: ModelFiles, bodies: list[Body], q0: np.ndarray, qd0: np.ndarray) -> None:
+    """Start values of free coordinates from the world's ``[generalizedStart]`` section."""
+    world = files.world
+    index = {c.name: k for k, c in enumerate(files.coordinates.coordinates) if c.kind == "g"}
+    reader = ExpressionReader(files, bodies)
+    values = {S.constant(name): v for name, v in files.constants.values.items()}
+    for key, item in world.generalized_start:
+        name = parse_coordinate_name(key, world.path, item.line)
+        if name.kind != "g" or name.name not in index:
+            raise ModelError(f"{key} is not a free coordinate g'name of the .gc file", world.path, item.line)
+        parts = split_list(item.text, files.separator)
+        if not 1 <= len(parts) <= 2 or not all(parts):
+            raise ModelError(f"{key} needs 'position' or 'position, velocity'", world.path, item.line)
+        numbers = []
+        for part in parts:
+            expr = reader.read(Located(part, item.line), world.path, constant_only=True)
+            number = float(expr.subs(values).evalf())
+            if not np.isfinite(number):
+                raise ModelError(f"the start value '{part}' of {key} is not a finite number", world.path, item.line)
+            numbers.append(number)
+        q0[index[name.name]] = numbers[0]
+        qd0[index[name.name]] = numbers[1] if len(numbers) > 1 else 0.0
 
 
 def _break_time(files: ModelFiles, bodies: list[Body]) -> float:

@@ -17,19 +17,22 @@ def model_tuple(a: KernelArrays) -> K.ModelArrays:
     return K.ModelArrays(
         a.binding, a.binding_index, a.start_pose, a.carrier, a.offset, a.points, a.point_start, a.skin,
         a.displacement_factor, a.radius, a.pair_bodies, a.pair_law, a.pair_resisting, a.pair_temperature,
-        a.watch_start, a.watch_points, a.parameters,
+        a.pair_heated, a.point_heat, a.watch_start, a.watch_points, a.parameters,
     )
 
 
 @dataclass
 class RunSettings:
     """What a run takes beyond the model files: break time (s), the seed of the lexicographic
-    tolerance draws and their range (none when the upper end is 0), and the LCP pivot limit."""
+    tolerance draws and their range (none when the upper end is 0), the LCP pivot limit, and the
+    passes of the step loop after which the stepper returns to its caller (who looks at Ctrl-C,
+    time limits and progress then: 2000 passes take well under a second)."""
 
     break_time: float
     seed: int = 0
     lexico_range: tuple[float, float] = (0.0, 0.0)
     max_pivots: int = 100000
+    passes_per_call: int = 2000
 
 
 def settings_array(model: Model, run: RunSettings) -> np.ndarray:
@@ -49,6 +52,7 @@ def settings_array(model: Model, run: RunSettings) -> np.ndarray:
     out[K.SAMPLE_AT_COLLISION] = float(s.history_at_collision)
     out[K.SAMPLE_EACH_STEP] = float(s.history_each_timestep)
     out[K.MAX_PIVOTS] = run.max_pivots
+    out[K.PASSES_PER_CALL] = run.passes_per_call
     return out
 
 

@@ -23,6 +23,7 @@ from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import run_number, version_name, version_number
 from mbds.io.job import JobFile, JobSettings, read_job
+from mbds.io.lock import folder_lock
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
@@ -40,6 +41,8 @@ def incomplete(folder: str | Path) -> str:
     attrs = read_attributes(path)
     if not attrs.get("complete"):
         return f"its run stopped at t = {attrs['end_time']:.9g} s ({attrs['stop_reason']})"
+    if continuation(folder) is not None:  # a continued run is complete at the length asked of it
+        return ""
     length = float(attrs["break_time"] - attrs["start_time"])
     with warnings.catch_warnings():  # the run of the version repeats any warning
         warnings.simplefilter("ignore", ModelWarning)
@@ -47,6 +50,20 @@ def incomplete(folder: str | Path) -> str:
     if not math.isclose(length, full, rel_tol=1e-9):
         return f"its run lasted {length:.9g} s, not the world file's breakTime of {full:.9g} s"
     return ""
+
+
+def continuation(folder: str | Path) -> tuple[int, float] | None:
+    """For a version whose run continues another version's end state (``mbds run --from``):
+    that version's number and the length of the run (s); None for a run from the model's start
+    or a version not run yet."""
+    path = Path(folder) / HISTORY
+    if not path.is_file():
+        return None
+    attrs = read_attributes(path)
+    source = int(attrs.get("continued_from", -1))
+    if source < 0:
+        return None
+    return source, float(attrs["break_time"] - attrs["start_time"])
 
 
 def next_version(folder: str | Path, runs: Sequence[str | Path] = ()) -> Path:
@@ -129,12 +146,17 @@ def read_checked_job(path: str | Path) -> JobFile:
 
 def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
     """Run the job file at ``path``: every listed version without a complete run is run in full
-    from the model's start and, with ``createNextVersionAtEnd = 1``, every complete one without
+    from the model's start (a version continuing another's run, from that run's end) and, with ``createNextVersionAtEnd = 1``, every complete one without
     a successor gets one. The job stops at the first run that does not complete (Ctrl-C,
     ``maxMinutesForJob``, ``maxMinutesForJobs``, ``maxLinesInLog``, a state that is not
     finite); bad input raises ModelError."""
     report = report or JobReport()
     job = read_checked_job(path)
+    with folder_lock(job.path.parent, "mbds job"):
+        return _run_job(job, report)
+
+
+def _run_job(job: JobFile, report: JobReport) -> JobResult:
     folder, settings = job.path.parent, job.settings
     result = JobResult()
     listed = f"{job.path.name} ({_listing(job.versions)})"
@@ -142,7 +164,7 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
         report.note(f"nothing to do: every version of {listed} has a complete run")
         return result
     if settings.delay_start_minutes:
-        report.note(f"waiting {settings.delay_start_minutes} min (delayStartMinutes)")
+        report.note(f"waiting {settings.delay_start_minutes:g} min (delayStartMinutes)")
         time.sleep(60.0 * settings.delay_start_minutes)
     deadline = time.monotonic() + 60.0 * settings.max_minutes_for_jobs
     for number in job.versions:
@@ -153,7 +175,7 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
         if not why:
             report.note(f"{version}: complete, not run again")
         elif time.monotonic() >= deadline:
-            result.stopped = f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min reached before {version}"
+            result.stopped = f"maxMinutesForJobs = {settings.max_minutes_for_jobs:g} min reached before {version}"
             return result
         else:
             record, wall = _run(version, why, job, report, deadline)
@@ -169,10 +191,18 @@ def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
 
 
 def _run(version: Path, why: str, job: JobFile, report: JobReport, deadline: float) -> tuple[RunRecord, float]:
-    """Run ``version`` in full under the job's time limits; its record and wall time (s)."""
+    """Run ``version`` in full under the job's time limits; its record and wall time (s). A
+    version that continues another's run (``mbds run --from``) is run again from that run's end
+    state for the same length, so that its start is kept."""
     begun = time.monotonic()
+    options = RunOptions(job=job.settings)
+    continued = continuation(version)
+    if continued is not None:
+        options.start_from, options.duration = continued
+        why += f"; it continues the run of {version_name(continued[0])}, from whose end it runs again"
     shown = report.start(version, why)
-    record = run_version(version, RunOptions(job=job.settings), time_limits(job.settings, deadline, shown))
+    with folder_lock(version, "mbds job"):
+        record = run_version(version, options, time_limits(job.settings, deadline, shown))
     wall = time.monotonic() - begun
     report.finish(version, record, wall)
     return record, wall
@@ -187,9 +217,9 @@ def time_limits(settings: JobSettings, deadline: float = math.inf, shown: Progre
     def progress(start, now, end, steps):
         clock = time.monotonic()
         if clock > own_deadline:
-            raise RunStopped(f"maxMinutesForJob = {settings.max_minutes_for_job} min exceeded")
+            raise RunStopped(f"maxMinutesForJob = {settings.max_minutes_for_job:g} min exceeded")
         if clock > deadline:
-            raise RunStopped(f"maxMinutesForJobs = {settings.max_minutes_for_jobs} min exceeded")
+            raise RunStopped(f"maxMinutesForJobs = {settings.max_minutes_for_jobs:g} min exceeded")
         if shown is not None:
             shown(start, now, end, steps)
 

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from mbds.kernel import layout as K
 from mbds.kernel.random import seeded_state
-from mbds.model.arrays import flatten
+from mbds.model.arrays import KernelArrays, flatten
 from mbds.model.load import Model
 from mbds.simulation.buffers import (
     RunSettings,
@@ -34,11 +36,10 @@ class RunState:
     point_interval: np.ndarray
 
 
-@dataclass
-class RunResult:
-    """Samples of a run: time (s), q, u, q'' (n columns), mechanical energy (J), lost work and
-    drive work (J, cumulative), watch interval sums (samples, watches, POINT_COLUMNS); events
-    (rows: time, code, value, value); the final state."""
+class Samples(NamedTuple):
+    """History samples of part of a run: time (s), q, u, q'' (samples, n), mechanical energy,
+    lost work and drive work (J, cumulative), watch interval sums (samples, watches,
+    POINT_COLUMNS)."""
 
     time: np.ndarray
     q: np.ndarray
@@ -48,6 +49,15 @@ class RunResult:
     lost: np.ndarray
     drive: np.ndarray
     watches: np.ndarray
+
+
+@dataclass
+class RunResult:
+    """A run: its samples (also read as ``result.time``, ``result.q``, ...; with no row when
+    they went to an ``on_samples`` callback of :func:`simulate`), its events (rows: time, code,
+    value, value) and its final state."""
+
+    samples: Samples
     events: np.ndarray
     state: RunState
     capacity: int = field(default=0)
@@ -56,6 +66,11 @@ class RunResult:
     @property
     def complete(self) -> bool:
         return not self.stopped
+
+    def __getattr__(self, name: str):
+        if name in Samples._fields:
+            return getattr(self.samples, name)
+        raise AttributeError(name)
 
 
 class RunStopped(Exception):
@@ -73,21 +88,39 @@ def initial_state(model: Model, seed: int) -> RunState:
         u=arrays.qd0.copy(),
         rng=seeded_state(seed),
         point_loss=np.zeros(len(arrays.points)),
-        point_interval=np.zeros((len(arrays.points), K.POINT_COLUMNS)),
+        point_interval=initial_point_values(arrays),
     )
+
+
+def initial_point_values(arrays: KernelArrays) -> np.ndarray:
+    """The per-point values at the start: nothing summed yet, the temperature of points with a
+    heat model at its ambient, NaN elsewhere."""
+    values = np.zeros((len(arrays.points), K.POINT_COLUMNS))
+    heated = arrays.point_heat[:, K.HEATING] > 0.0
+    values[:, K.TEMP] = np.where(heated, arrays.point_heat[:, K.AMBIENT], np.nan)
+    return values
+
+
+def continue_from(state: RunState) -> None:
+    """Make ``state`` (the end state of a run) start a continued run: its first history sample
+    is taken at once, at the start time, as a run from the model's start takes one at t = 0."""
+    state.clock[K.NEXT_SAMPLE] = state.clock[K.T]
 
 
 def simulate(
     model: Model, run: RunSettings, state: RunState | None = None, progress=None, *, on_events=None,
-    chunk: int = HISTORY_CHUNK,
+    on_samples: Callable[[Samples], None] | None = None, chunk: int = HISTORY_CHUNK,
 ) -> RunResult:
     """Run ``model`` from ``state`` (default: its start) to ``run.break_time``.
 
-    Between calls of the stepper (every ``chunk`` samples at most, or when its event buffer is
-    full) ``on_events(rows)`` gets the event rows found since the last call and ``progress(t)``
-    the time reached (s), if given. Either may raise :class:`RunStopped` or KeyboardInterrupt to
-    end the run there (unless it already reached its break time): the samples and events so far
-    are returned, with ``stopped`` set. The result does not depend on ``chunk``. A state that
+    Between calls of the stepper (every ``chunk`` samples or ``run.passes_per_call`` passes of
+    its step loop at most, or when its event buffer is full) ``on_samples(samples)`` gets the
+    samples taken since the last call (which the result then does not hold: memory does not
+    grow with the run's length), ``on_events(rows)`` the event rows and ``progress(t)`` the time
+    reached (s), if given. ``on_events`` or ``progress`` may raise :class:`RunStopped` or
+    KeyboardInterrupt to end the run there (unless it already reached its break time): the
+    samples and events so far are returned, with ``stopped`` set. The result does not depend on
+    ``chunk`` or ``run.passes_per_call``. A state that
     stops being finite (or a mass matrix that is not positive definite) also ends the run, with
     ``stopped`` saying so.
     """
@@ -99,7 +132,8 @@ def simulate(
     n, m, nb = len(arrays.q0), len(model.dependent), len(model.bodies)
     capacity = 16
     ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
-    chunks: list[tuple] = []
+    chunks: list[Samples] = []
+    deliver = on_samples if on_samples is not None else chunks.append
     events: list[np.ndarray] = []
     history = K.history_buffers(n, len(model.watches), chunk)
     events_out = event_buffer(EVENT_CHUNK)
@@ -114,7 +148,8 @@ def simulate(
             ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
             continue
         count = int(history.count[0])
-        chunks.append(tuple(a[:count].copy() for a in history[:-1]))
+        if count:
+            deliver(Samples(*(a[:count].copy() for a in history[:-1])))
         history.count[0] = 0
         events.append(events_out.data[: events_out.count[0]].copy())
         events_out.count[0] = 0
@@ -131,7 +166,6 @@ def simulate(
                 stopped = (str(exc) or "stopped") if isinstance(exc, RunStopped) else "interrupted"
         if stopped or status == K.REACHED:
             break
-    columns = [np.concatenate([c[j] for c in chunks]) for j in range(8)]
-    return RunResult(
-        *columns, events=np.concatenate(events), state=state, capacity=capacity, stopped=stopped
-    )
+    empty = Samples(*(a[:0].copy() for a in history[:-1]))
+    columns = [np.concatenate([c[j] for c in chunks] + [empty[j]]) for j in range(len(Samples._fields))]
+    return RunResult(Samples(*columns), np.concatenate(events), state, capacity=capacity, stopped=stopped)

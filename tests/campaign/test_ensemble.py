@@ -2,6 +2,8 @@
 lexicographic-tolerance draws; the worn version is made from the mean of their per-point losses,
 and the collected summary keeps each replicate's losses along ``replicate``."""
 
+import json
+
 import numpy as np
 import xarray as xr
 
@@ -50,6 +52,8 @@ def test_ensemble_wear_uses_the_mean_of_the_replicates_runs(tmp_path):
     assert code == 0, err
     tree = mbds.open_campaign(plan.folder)
     summary = tree.ds
+    assert json.loads(summary.attrs["identical_replicates"]) == []  # the draws decided pivots here
+    assert summary.attrs["identical_replicates_note"].startswith("0 of 1 versions")
     assert summary["point_lost_work"].dims == ("variant", "replicate", "version", "point")
     assert summary["shape_x"].dims == ("variant", "version", "point")
     assert list(summary["seed"].sel(variant="v00").values) == [t.seed for t in plan.tasks if t.kind == "run"]

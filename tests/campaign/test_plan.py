@@ -127,3 +127,27 @@ def test_campaign_versions_must_start_at_000_and_follow_one_another(tmp_path):
     with pytest.raises(ModelError, match="consecutive versions from 000") as caught:
         expand(job)
     assert caught.value.line == 2
+
+
+def test_ready_tasks_start_with_the_chain_with_most_work_left(tmp_path):
+    """Longest-processing-time first: a chain with more versions left starts before one that is
+    nearly done, whatever their order in the plan."""
+    from mbds.campaign.priority import by_remaining_work
+
+    plan = expand(two_mass(tmp_path, "c'gravity = 9.81, 5\n", jobs="000-002"))
+    ledger = Ledger(plan.folder)
+    ahead = [t for t in plan.tasks if t.chain == "v01"][:5]  # v01: prepare, 000 run and wear, 001 run and wear
+    for task in ahead:
+        ledger.mark(task.id, DONE, save=False, wall={"prepare": 0.01, "run": 2.0, "wear": 0.2}[task.kind])
+    ready = ready_tasks(plan, ledger)
+    assert [t.id for t in ready] == ["v00/prepare", "v01/002/run"]  # plan order
+    assert [t.id for t in by_remaining_work(plan, ledger, ready)] == ["v00/prepare", "v01/002/run"]
+    ledger.mark("v00/prepare", DONE, save=False, wall=0.01)
+    ready = ready_tasks(plan, ledger)
+    assert [t.id for t in by_remaining_work(plan, ledger, ready)] == ["v00/000/run", "v01/002/run"]
+    # v01 has the longer tasks left once v00 is far ahead
+    for task in [t for t in plan.tasks if t.chain == "v00"][1:5]:
+        ledger.mark(task.id, DONE, save=False, wall={"run": 2.0, "wear": 0.2}[task.kind])
+    ledger.tasks.pop("v01/001/wear")  # v01 is back at 001's wear: two tasks more than v00
+    ready = ready_tasks(plan, ledger)
+    assert [t.id for t in by_remaining_work(plan, ledger, ready)] == ["v01/001/wear", "v00/002/run"]

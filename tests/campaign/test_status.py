@@ -54,3 +54,22 @@ def test_status_on_a_terminal_colours_the_states(tmp_path):
     print_status(plan, ledger, Console(file=buffer, force_terminal=True, width=120))
     out = buffer.getvalue()
     assert "\x1b[" in out and "failed" in out and "variants" in out and "c'gravity" in out
+
+
+def test_bit_identical_replicates_are_reported(tmp_path):
+    """2mass never lets the lexicographic tolerance decide a pivot: its replicates' runs are
+    bit-identical whatever their seeds, and status and the collected provenance say so."""
+    import json
+
+    import mbds
+
+    job = two_mass(tmp_path, "replicates = 2\nmode = ensemble\nworld.breakTime = 0.1\n", jobs="000")
+    job.write_text(job.read_text().replace("[main]", "[main]\nlexicoRandomizationRange = 1e-10, 1e-6", 1))
+    code, _, err = campaign("run", job)
+    assert code == 0, err
+    code, out, _ = campaign("status", job)
+    assert code == 0 and "replicates bit-identical in 1 of 1 versions run in full (v00/000)" in out
+    assert campaign("collect", job)[0] == 0
+    tree = mbds.open_campaign(expand(job).folder)
+    assert json.loads(tree.ds.attrs["identical_replicates"]) == ["v00/000"]
+    tree.close()

@@ -11,7 +11,7 @@ from mbds.cli.main import app
 from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLES = ["2mass", "wearballs", "woodpecker"]
+EXAMPLES = ["2mass", "wearballs", "woodpecker", "double_pendulum"]
 
 
 def run(*args):

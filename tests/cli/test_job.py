@@ -118,7 +118,7 @@ def test_ctrl_c_stops_the_version_and_the_job(tmp_path):
     text = world.read_text()
     world.write_text(text.replace(next(x for x in text.splitlines() if x.startswith("breakTime")), "breakTime = 1000"))
     (folder / "woodpecker.job").write_text("[main]\njobs = 000-001\ncreateNextVersionAtEnd = 1\n")
-    code, out, err = ctrl_c("job", folder / "woodpecker.job", wait=0.0)
+    code, out, err, _ = ctrl_c("job", folder / "woodpecker.job", wait=0.0)
     assert code == 130, err
     assert "job stopped" in out
     attrs = read_attributes(folder / "000" / "history.nc")

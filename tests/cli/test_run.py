@@ -102,9 +102,10 @@ def test_bad_options_exit_2(tmp_path, args, message):
     assert code == 2 and message in err
 
 
-def ctrl_c(*args, wait=1.0):
-    """Run ``mbds ARGS`` in a subprocess, press Ctrl-C ``wait`` s after its first line
-    ("running ..."); its exit code, output and error output."""
+def ctrl_c(*args, wait=1.0, sent=signal.SIGINT):
+    """Run ``mbds ARGS`` in a subprocess, press Ctrl-C (or send ``sent``) ``wait`` s after its
+    first line ("running ..."); its exit code, output and error output, and the seconds from
+    the signal to its end."""
     exe = Path(sys.executable).with_name("mbds")
     child = subprocess.Popen(
         [str(exe), *map(str, args)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ.copy(),
@@ -112,17 +113,33 @@ def ctrl_c(*args, wait=1.0):
     try:
         assert child.stdout.readline().startswith("running")
         time.sleep(wait)
-        child.send_signal(signal.SIGINT)
+        child.send_signal(sent)
+        signalled = time.monotonic()
         out, err = child.communicate(timeout=120)
+        took = time.monotonic() - signalled
     finally:
         child.kill()
-    return child.returncode, out, err
+    return child.returncode, out, err, took
 
 
 def test_ctrl_c_keeps_the_results_marked_incomplete(tmp_path):
     folder = example(tmp_path, "woodpecker")
-    code, out, err = ctrl_c("run", folder, "--break-time", 1000)
+    code, out, err, _ = ctrl_c("run", folder, "--break-time", 1000)
     assert code == 130, err
     assert "incomplete" in out
     attrs = attributes(folder / "000" / "history.nc")
     assert attrs["complete"] == 0 and attrs["stop_reason"] == "interrupted" and 0 < attrs["end_time"] < 1000
+
+
+def test_sigterm_stops_within_a_second_between_sparse_samples(tmp_path):
+    """A sample every 100 s: the stepper still hands control back every few thousand steps, so
+    SIGTERM stops the run within about a second and what it computed is written."""
+    folder = example(tmp_path, "woodpecker")
+    world = folder / "woodpecker.wld"
+    world.write_text(world.read_text().replace("writeToHistoryMultipleOfMaximumTimestep = 1",
+                                               "writeToHistoryMultipleOfMaximumTimestep = 10000000"))
+    code, out, err, took = ctrl_c("run", folder, "--break-time", 1000, wait=4.0, sent=signal.SIGTERM)
+    assert code == 130, err
+    assert took < 3.0  # the signal is seen within a second; the rest is writing and exiting
+    attrs = attributes(folder / "000" / "history.nc")
+    assert attrs["complete"] == 0 and attrs["stop_reason"] == "interrupted" and 0 < attrs["end_time"] < 100

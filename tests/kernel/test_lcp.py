@@ -142,6 +142,20 @@ def test_murty_exponential_example(n):
     np.testing.assert_array_equal(result.z, expected)
 
 
+@pytest.mark.parametrize("n", range(1, 14))
+def test_murty_solved_with_default_pivot_limit(n):
+    """Murty (1978): Lemke needs 2^n pivots; the default limit (10,000) covers n <= 13."""
+    M, q = murty(n)
+    result = solve(M, q)
+    assert_solved(M, q, result)
+    assert result.pivots == 2**n
+
+
+def test_murty_fourteen_exceeds_default_pivot_limit():
+    M, q = murty(14)
+    assert solve(M, q).status == Status.MAX_PIVOTS
+
+
 def test_murty_hits_pivot_limit():
     M, q = murty(6)
     assert solve(M, q, max_pivots=63).status == Status.MAX_PIVOTS

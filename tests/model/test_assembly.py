@@ -246,3 +246,21 @@ def test_pairs_that_can_never_touch_are_skipped(tmp_path):
     assert frozenset(("ringSideR", "bird")) in pairs and frozenset(("post", "bird")) in pairs
     for never in (("ringSideR", "ring"), ("ringSideR", "ringSideX"), ("post", "stick")):
         assert frozenset(never) not in pairs
+
+
+def test_contact_law_numbers_are_parameters(tmp_path):
+    """Variants that differ only in contact-law numbers share one generated module."""
+    from mbds.expr.codegen import generate_source
+
+    sources, values = [], []
+    for friction, law in (("0.1", "0.3 - 0.001*temp"), ("0.4", "0.2 - 0.005*temp")):
+        folder = copy_example("2mass", tmp_path / friction)
+        cop = folder / "2mass.cop"
+        text = cop.read_text().replace("friction=0.1", f"friction={friction}")
+        cop.write_text(text.replace("restitutionTangent=0.2", f"restitutionTangent={law}"))
+        model = load_model(folder, compile=False)
+        sources.append(generate_source(model.expressions))
+        values.append(dict(zip(map(str, model.parameters.symbols), model.parameters.values)))
+    assert sources[0] == sources[1]
+    assert values[0]["law`1`0`0"] == 0.1 and values[1]["law`1`0`0"] == 0.4
+    assert (values[1]["law`1`2`0"], values[1]["law`1`2`1"]) == (0.2, -0.005)

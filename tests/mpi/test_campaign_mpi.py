@@ -2,6 +2,7 @@
 process gives bit-identical collected data, and no task compiles (the warm-up did); SIGTERM to
 mpiexec stops all ranks cleanly and the campaign resumes."""
 
+import os
 import shutil
 import signal
 import subprocess
@@ -21,12 +22,13 @@ from tests.campaign.models import two_mass
 from tests.examples import copy_example
 
 MPIEXEC = Path(sys.executable).parent / "mpiexec"
+CONSOLE = Path(sys.executable).parent / "mbds-campaign"
 FOUR = "c'gravity = 9.81, 5\ncontact.mass1-mass2.friction = 0.1, 0.3\nworld.breakTime = 0.05\n"
 LAUNCHES = {
     "one process": [],
     "pool": ["--workers", "2"],
     "2 ranks": ["-n", "2"],
-    "3 ranks": ["-n", "3"],
+    "3 ranks": ["-n", "3"],  # launched as `mpiexec -n 3 mbds-campaign run`, the console script
 }
 
 
@@ -34,7 +36,9 @@ def launch(job, how):
     """Run the campaign of ``job`` as ``how`` says; the collected tree."""
     args = LAUNCHES[how]
     command = [sys.executable, "-m", "mbds.cli.campaign", "run", str(job)]
-    if args[:1] == ["-n"]:
+    if how == "3 ranks":
+        command = [str(MPIEXEC), *args, str(CONSOLE), "run", str(job)]
+    elif args[:1] == ["-n"]:
         command = [str(MPIEXEC), *args, sys.executable, "-m", "mpi4py", "-m", "mbds.cli.campaign", "run", str(job)]
     else:
         command += args
@@ -67,6 +71,28 @@ def test_collected_data_do_not_depend_on_how_the_campaign_ran(tmp_path):
                     continue
                 assert np.array_equal(variable.values, other.ds[name].values), (how, node.path, name)
         assert tree.ds.attrs["workers"] == {"pool": 2, "2 ranks": 1, "3 ranks": 2}[how]
+
+
+@pytest.mark.mpi
+def test_a_rank_alone_in_its_world_refuses_to_run(tmp_path):
+    """A launcher that started 2 ranks (PMI_SIZE = 2) while MPI shows this process a world of
+    one (mismatched MPI libraries) must not run the campaign alone: exit 2, nothing run."""
+    job = two_mass(tmp_path / "alone", FOUR, jobs="000")
+    env = {**os.environ, "PMI_SIZE": "2"}
+    done = subprocess.run([str(CONSOLE), "run", str(job)], capture_output=True, text=True, timeout=120, env=env)
+    assert done.returncode == 2, done.stderr
+    assert "launcher started 2 ranks, but MPI sees a world of 1" in done.stderr
+    assert not (job.parent / "campaign" / "ledger.json").exists()
+
+
+def test_launcher_ranks_from_environment():
+    from mbds.cli.campaign import launcher_ranks
+
+    assert launcher_ranks({}) == 1
+    assert launcher_ranks({"PMI_SIZE": "4"}) == 4
+    assert launcher_ranks({"OMPI_COMM_WORLD_SIZE": "16"}) == 16
+    assert launcher_ranks({"SLURM_STEP_NUM_TASKS": "8"}) == 1  # an allocation, not an srun step
+    assert launcher_ranks({"SLURM_STEP_NUM_TASKS": "8", "SLURM_STEP_ID": "0"}) == 8
 
 
 WOODPECKER = """[main]

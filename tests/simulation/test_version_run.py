@@ -16,7 +16,7 @@ from mbds.data.history import CLOCK_ENTRIES, read_final_state
 from mbds.kernel import layout as K
 from mbds.model.load import load_model
 from mbds.simulation.buffers import RunSettings
-from mbds.simulation.run import simulate
+from mbds.simulation.run import continue_from, simulate
 from mbds.simulation.version_run import PROGRESS_CHUNK, RunOptions, run_version
 from mbds.simulation.versions import ensure_version
 from tests.examples import copy_example
@@ -46,7 +46,7 @@ def test_history_has_the_documented_variables_and_attributes(tmp_path):
         assert list(ds["coordinate_unit"].values) == ["m", "m", "rad"]
         assert list(ds["watch"].values) == ["mass1#0", "mass1#1", "mass1#2"]
         units = {
-            "q": "m or rad", "qd": "m/s or rad/s", "qdd": "m/s2 or rad/s2", "mechanical_energy": "J",
+            "mechanical_energy": "J", "body_x": "m", "body_y": "m", "body_angle": "rad",
             "lost_work": "J", "driver_work": "J", "impulse_normal": "N s", "impulse_tangential": "N s",
             "impulse_x": "N s", "impulse_y": "N s", "work": "J", "shape_x": "m", "shape_y": "m",
             "point_lost_work": "J", "point_lost_work_smoothed": "J", "time": "s",
@@ -54,6 +54,14 @@ def test_history_has_the_documented_variables_and_attributes(tmp_path):
         for name, unit in units.items():
             assert ds[name].attrs["units"] == unit, name
             assert ds[name].attrs["long_name"], name
+        for name, units in {"q": "coordinate_unit", "qd": "velocity_unit", "qdd": "acceleration_unit"}.items():
+            assert ds[name].attrs["ancillary_variables"] == units and "units" not in ds[name].attrs
+        assert list(ds["velocity_unit"].values) == ["m s-1", "m s-1", "rad s-1"]
+        # mass1's pose is its own coordinates; mass2 has none (fixed at its start pose)
+        np.testing.assert_array_equal(ds["body_x"].sel(body="mass1").values, ds["q"].values[:, 0])
+        np.testing.assert_array_equal(ds["body_angle"].sel(body="mass1").values, ds["q"].values[:, 2])
+        assert list(ds["body_kind"].values) == ["moving", "fixed"]
+        assert list(ds["point_body_name"].values) == ["mass1"] * 5 + ["mass2"] * 4
         assert ds["q"].dims == ("time", "coordinate") and ds["work"].dims == ("time", "watch")
         assert "angle" not in ds and "t_div_n" not in ds
         assert ds.sizes["point"] == 5 + 4  # distinct points of mass1 and mass2
@@ -64,7 +72,11 @@ def test_history_has_the_documented_variables_and_attributes(tmp_path):
         assert "breakTime = 0.5" in ds.attrs["input_2mass.wld"]
         assert "contactWatch = 0-2" in ds.attrs["input_2mass.wtc"]
         assert ds.attrs["input_files"].split()[0] == "2mass.wld"
-        np.testing.assert_array_equal(ds["q"].values, record.q)
+        direct = simulate(load_model(folder / "000", version=0), RunSettings(0.1))  # the samples, kept in memory
+        np.testing.assert_array_equal(ds["time"].values, direct.time)
+        np.testing.assert_array_equal(ds["q"].values, direct.q)
+        np.testing.assert_array_equal(ds["lost_work"].values, direct.lost)
+        assert record.samples == len(direct.time) and record.last_sample == direct.time[-1]
         # each contact's loss goes to the points of both bodies
         assert ds["point_lost_work"].sum() == pytest.approx(2 * ds.attrs["run_lost_work"])
         assert abs(ds.attrs["energy_residual"]) < 1e-9
@@ -93,8 +105,10 @@ def test_interrupted_run_is_written_and_marked_incomplete(tmp_path):
         partial = ds["q"].values
     log = (version / "log.txt").read_text().splitlines()
     assert log[-1].startswith("[Alert] Run stopped at") and "incomplete" in log[-1]
-    full = run(model_copy(tmp_path / "b"), duration=0.5)  # what was kept is the start of the full run
-    np.testing.assert_array_equal(partial, full.q[: len(partial)])
+    other = model_copy(tmp_path / "b")
+    run(other, duration=0.5)  # what was kept is the start of the full run
+    with xr.open_dataset(other / "000" / "history.nc") as ds:
+        np.testing.assert_array_equal(partial, ds["q"].values[: len(partial)])
 
 
 def _data_variables(path):
@@ -126,13 +140,15 @@ def test_from_starts_exactly_where_the_version_ended(tmp_path):
     version = ensure_version(folder, 1, folder / "000")
     second = run_version(version, RunOptions(duration=0.15, start_from=0))
     assert second.start_time == first.end_time and second.end_time == pytest.approx(0.35)
-    assert second.time[0] > first.end_time
+    assert second.first_sample == first.end_time  # its first sample is its start state
     # the same as continuing the in-memory state without going through the file
     model = load_model(version, version=1)
+    continue_from(ended)
     reference = simulate(model, RunSettings(second.break_time, 0), ended, chunk=PROGRESS_CHUNK)
-    np.testing.assert_array_equal(reference.q, second.q)
     np.testing.assert_array_equal(reference.state.clock, second.final_state.clock)
     with xr.open_dataset(version / "history.nc") as ds:
+        np.testing.assert_array_equal(ds["q"].values[0], stored.q)
+        np.testing.assert_array_equal(ds["q"].values, reference.q)
         assert ds.attrs["continued_from"] == 0 and ds.attrs["start_time"] == first.end_time
         # lost work counts from this run's start
         assert ds["lost_work"].values[-1] == pytest.approx(ds.attrs["run_lost_work"])
@@ -193,7 +209,7 @@ from pathlib import Path
 import mbds.data.history as H
 from mbds.simulation.version_run import RunOptions, run_version
 
-def stall(state):
+def stall(*args):
     Path({str(marker)!r}).touch()
     time.sleep(60)
 
@@ -217,3 +233,44 @@ run_version(Path({str(folder / '000')!r}), RunOptions(duration=0.2))
     assert list(history.parent.glob(".history.nc.*.tmp"))  # the half-written file was a temporary one
     run(folder, duration=0.1)  # the next run clears it away
     assert not list(history.parent.glob(".*.tmp"))
+
+
+def test_max_lines_in_log_counts_the_fixed_lines(tmp_path):
+    """A log of six fixed lines exceeds maxLinesInLog = 1 without any alert: the run stops."""
+    edits = [("2mass.job", "maxMinutesForJob = 5", "maxMinutesForJob = 5\nmaxLinesInLog = 1")]
+    folder = model_copy(tmp_path, edits=edits)
+    record = run(folder)
+    assert not record.complete and "maxLinesInLog = 1" in record.stopped
+    assert record.end_time < 0.5  # the world's breakTime is 0.5 s
+
+
+def test_a_job_keeps_a_continued_version_and_runs_it_again_from_where_it_continues(tmp_path):
+    """`mbds run --from 000` made 001; a job listing 000-001 must neither replace 001's start by
+    the model's start nor run a complete continuation again."""
+    from mbds.simulation.job import run_job
+
+    edits = [("2mass.job", "jobs = 000", "jobs = 000-001")]
+    world = [("2mass.wld", "breakTime = 0.5", "breakTime = 0.1\nwriteToHistoryMultipleOfMaximumTimestep = 1")]
+    folder = model_copy(tmp_path, edits=[*edits, *world])
+    first = run(folder)
+    run(folder, 1, duration=0.3, start_from=0)  # 600 samples: longer than one progress chunk
+    before = (folder / "001" / "history.nc").stat().st_mtime_ns
+    assert run_job(folder / "2mass.job").runs == []  # both complete
+    assert (folder / "001" / "history.nc").stat().st_mtime_ns == before
+
+    def interrupt(*args):
+        raise KeyboardInterrupt
+
+    run_version(folder / "001", RunOptions(duration=0.3, start_from=0), interrupt)  # now incomplete
+    result = run_job(folder / "2mass.job")
+    assert [number for number, *_ in result.runs] == [1]
+    record = result.runs[0][1]
+    assert record.complete and record.continued_from == 0
+    assert record.start_time == first.end_time and record.end_time == pytest.approx(first.end_time + 0.3)
+
+
+def test_job_minutes_may_be_fractional(tmp_path):
+    from mbds.io.job import parse_job
+
+    job = parse_job("[main]\njobs = 000\ndelayStartMinutes = 0.05\nmaxMinutesForJob = 2.5\n", tmp_path / "a.job")
+    assert job.settings.delay_start_minutes == 0.05 and job.settings.max_minutes_for_job == 2.5

@@ -18,6 +18,7 @@ from typer.testing import CliRunner
 from mbds.cli.main import app
 from mbds.data.history import read_attributes, read_point_losses
 from mbds.io.folder import read_model_files
+from mbds.io.lock import LOCK_FILE
 from mbds.model.geometry import polygon_properties
 from mbds.wear.version import WEAR_FILE
 from tests.examples import copy_example
@@ -44,7 +45,9 @@ def wearballs(folder: Path, jobs: str) -> Path:
 
 
 def hashes(folder: Path) -> dict[str, str]:
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(folder.rglob("*")) if p.is_file()}
+    """Digests of the files below ``folder``, lock files (held while a command works) left out."""
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file() and p.name != LOCK_FILE}
 
 
 def shape(version: Path, body: str) -> np.ndarray:
@@ -145,6 +148,7 @@ def test_killed_job_resumes_leaving_finished_versions_as_they_are(tmp_path):
         child.stderr.close()
     assert read_attributes(folder / "000" / "history.nc")["complete"] == 1
     assert not (folder / "001" / "history.nc").exists()  # killed while running 001
+    assert (folder / LOCK_FILE).exists()  # left by the killed job: stale, taken over on resume
     assert not (folder / "002").exists()
     finished_before = hashes(folder / "000")
     created_before = hashes(folder / "001")
@@ -157,3 +161,4 @@ def test_killed_job_resumes_leaving_finished_versions_as_they_are(tmp_path):
     for number in (1, 2):
         assert read_attributes(folder / f"{number:03d}" / "history.nc")["complete"] == 1
     assert (folder / "003" / WEAR_FILE).is_file()
+    assert not (folder / LOCK_FILE).exists() and not (folder / "001" / LOCK_FILE).exists()

@@ -1,0 +1,93 @@
+"""How fast the pictures come: issue 14's two figures.
+
+1. Animating the 1 s woodpecker run (campaigns/woodpecker, breakTime 1 s: 100 001 samples) at
+   30 frames/s into a GIF: ``mbds animate`` timed as a command (interpreter start and imports in)
+   and ``mbds.plot.animate`` + ``save`` timed in this process.
+2. A campaign of 64 chains x 10 versions (a copy of campaigns/2mass varying ``c'gravity`` and the
+   friction over 8 values each, breakTime 5 ms, versions 000-009, 640 runs), collected; then
+   ``mbds-campaign plot`` (its summary and the worn shapes of both bodies) timed as a command, and
+   opening the campaign plus each figure timed in this process.
+
+Run from the repository root: ``.venv/bin/python benchmarks/plot_speed.py``. The runs take a few
+minutes on 2 cores; the figures are what is timed.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+ROOT = Path(__file__).resolve().parents[1]
+BIN = Path(sys.executable).parent
+GRID = ", ".join(f"{v:g}" for v in (8.0, 8.5, 9.0, 9.5, 9.81, 10.5, 11.0, 12.0))
+FRICTION = ", ".join(f"{v:g}" for v in (0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5))
+JOB = f"""[main]
+worldFile = 2mass.wld
+jobs = 000-009
+createNextVersionAtEnd = 1
+[campaign]
+c'gravity = {GRID}
+contact.mass1-mass2.friction = {FRICTION}
+world.breakTime = 0.005
+folder = campaign
+"""
+
+
+def timed(*command) -> float:
+    start = time.perf_counter()
+    subprocess.run([str(c) for c in command], check=True, capture_output=True)
+    return time.perf_counter() - start
+
+
+def copy(name: str, into: Path) -> Path:
+    return Path(shutil.copytree(ROOT / "campaigns" / name, into / name,
+                                ignore=lambda _, names: [n for n in names if n == "campaign" or n[:3].isdigit()]))
+
+
+def main() -> None:
+    from mbds import open_campaign, plot
+
+    with tempfile.TemporaryDirectory() as work:
+        work = Path(work)
+        woodpecker = copy("woodpecker", work)
+        subprocess.run([BIN / "mbds", "run", woodpecker, "--break-time", "1"], check=True, capture_output=True)
+        command = timed(BIN / "mbds", "animate", woodpecker, "-o", work / "run.gif", "--fps", "30")
+        start = time.perf_counter()
+        with plot.open_run(woodpecker) as run:
+            plot.save(plot.animate(run, fps=30), work / "again.gif")
+            samples = run.sizes["time"]
+        print(f"woodpecker 1 s ({samples} samples) at 30 frames/s into a GIF: mbds animate {command:.2f} s, "
+              f"animate + save in process {time.perf_counter() - start:.2f} s")
+
+        two_mass = copy("2mass", work)
+        job = two_mass / "grid.job"
+        job.write_text(JOB)
+        subprocess.run([BIN / "mbds-campaign", "run", job, "--workers", "2"], check=True, capture_output=True)
+        subprocess.run([BIN / "mbds-campaign", "collect", job], check=True, capture_output=True)
+        size = (two_mass / "campaign" / "campaign.nc").stat().st_size / 2**20
+        command = timed(BIN / "mbds-campaign", "plot", job, "-o", work / "figures")
+        start = time.perf_counter()
+        tree = open_campaign(two_mass / "campaign")
+        opened = time.perf_counter() - start
+        times = {}
+        for name, draw in {"summary": lambda: plot.campaign_summary(tree),
+                           "wear mass1": lambda: plot.wear(tree, "mass1")}.items():
+            start = time.perf_counter()
+            draw().savefig(work / f"{name}.png")
+            times[name] = time.perf_counter() - start
+        tree.close()
+        shown = ", ".join(f"{k} {v:.2f} s" for k, v in times.items())
+        print(f"campaign 64 chains x 10 versions ({size:.0f} MiB): mbds-campaign plot (3 figures) {command:.2f} s; "
+              f"in process: open {opened:.2f} s, {shown}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,4 @@
+function inUvectors
+    include_global
+
+    Uvectors = [];

@@ -1,0 +1,4 @@
+function inJoints
+    include_global
+
+    Joints = [];

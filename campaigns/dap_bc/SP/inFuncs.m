@@ -1,0 +1,4 @@
+function inFuncs
+    include_global
+
+    Functs = [];

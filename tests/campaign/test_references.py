@@ -1,0 +1,62 @@
+"""A collected campaign keeps its runs' histories in their files: a run's node equals its
+history.nc as xarray opens it, no run file is read before a value is used, and a moved run
+file gives a clear error."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import mbds
+from mbds.campaign.collect import collect
+from mbds.campaign.plan import expand
+from mbds.data.references import describe, open_described
+from mbds.errors import ModelError
+from tests.campaign.models import two_mass
+from tests.campaign.test_run import campaign
+
+
+@pytest.fixture(scope="module")
+def collected(tmp_path_factory):
+    job = two_mass(tmp_path_factory.mktemp("refs"), "c'gravity = 9.81, 5\nworld.breakTime = 0.2\n", jobs="000-001")
+    code, _, err = campaign("run", job)
+    assert code == 0, err
+    plan = expand(job)
+    return plan, collect(plan)
+
+
+def test_a_described_history_opens_as_xarray_opens_it(collected):
+    plan, _ = collected
+    history = plan.folder / "v01" / "001" / "history.nc"
+    description, times, _ = describe(history)
+    with xr.open_dataset(history) as direct:
+        assert open_described(history, description, times).load().identical(direct.load())
+
+
+def test_run_nodes_are_the_run_files_read_when_used(collected, monkeypatch):
+    plan, path = collected
+    from mbds.data import references
+
+    opened = []
+    real = references._FileVariable._read
+    monkeypatch.setattr(references._FileVariable, "_read", lambda self, key: opened.append(self.path) or real(self, key))
+    tree = mbds.open_campaign(path)
+    assert opened == []  # opening reads no run file
+    lost = tree["v00/001"]["lost_work"].values
+    assert opened == [plan.folder / "v00" / "001" / "history.nc"]
+    with xr.open_dataset(plan.folder / "v00" / "001" / "history.nc") as run:
+        np.testing.assert_array_equal(lost, run["lost_work"].values)
+    tree.close()
+
+
+def test_a_moved_run_file_is_named(collected, tmp_path):
+    plan, path = collected
+    tree = mbds.open_campaign(path)
+    history = plan.folder / "v01" / "000" / "history.nc"
+    moved = tmp_path / "moved.nc"
+    history.rename(moved)
+    try:
+        with pytest.raises(ModelError, match="collect the campaign again"):
+            tree["v01/000"]["q"].values
+    finally:
+        moved.rename(history)
+        tree.close()
