@@ -1,14 +1,12 @@
 [main]
 name = ringSideL
 RGBColor = 1 1 0
-shapeType = extrusionSolid
 shapeFile = ringSideL.exs
 density = 1000
 thickness = 0.005
-correctOrigin = 0
 [startPosition]
-x = 0
-y = 0
+x = 1.576687206060764e-05
+y = -3.0029781505942215e-05
 z = 0
 Rx = 0
 Ry = 0
