@@ -172,9 +172,39 @@ def bouncing_ball(cache_root: Path) -> None:
     print(f"ratio mbds/Siconos steps per second: {ours / rate:.2f}")
 
 
+OMEGAS = (40.0, 50.0, 62.83185307, 80.0, 100.0)
+"""c'omega (rad/s) of the wearballs drive swept by :func:`stick_slip`."""
+
+SWEEP_TIME = 0.3
+"""Simulated time (s) of each run of the sweep."""
+
+
+def stick_slip(cache_root: Path) -> None:
+    """Wall time per simulated second of campaigns/wearballs across its drive frequency c'omega:
+    resting and stick-slip regimes must not collapse the step (goal: all within 3x of the
+    fastest). The variants differ in a constant only, so they share one compiled model."""
+    print("\n## stick-slip: wearballs across c'omega\n")
+    print("| c'omega rad/s | steps | mean step s | wall s per simulated s |")
+    print("|---|---|---|---|")
+    os.environ["MBDS_CACHE_DIR"] = str(cache_root / "wearballs")
+    costs = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for omega in OMEGAS:
+            folder = Path(tmp) / f"omega{omega:g}"
+            shutil.copytree(ROOT / "campaigns" / "wearballs", folder)
+            cns = folder / "wearballs.cns"
+            cns.write_text("".join(f"c'omega = {omega!r}\n" if line.startswith("c'omega") else line
+                                   for line in cns.read_text().splitlines(keepends=True)))
+            steps, wall = timed_run(folder, SWEEP_TIME)
+            costs.append(wall / SWEEP_TIME)
+            print(f"| {omega:g} | {steps:.0f} | {SWEEP_TIME / steps:.2e} | {costs[-1]:.2f} |")
+    print(f"\nslowest / fastest: {max(costs) / min(costs):.2f} (goal: at most 3)")
+
+
 def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         examples(Path(tmp))
+        stick_slip(Path(tmp))
         bouncing_ball(Path(tmp))
     print("\ngoals: start-up warm < 2 s; woodpecker sim s / wall s > 1 (1 s simulated in under 1 s)")
 
