@@ -48,6 +48,7 @@ from mbds.kernel import layout as K  # noqa: E402
 from mbds.model.load import load_model  # noqa: E402
 from mbds.simulation.buffers import RunSettings  # noqa: E402
 from mbds.simulation.run import simulate  # noqa: E402
+from tests.physics.limit_cycle import cycle_figures, velocity_jumps  # noqa: E402
 from tests.physics.models import BodyOnFloor, regular_polygon  # noqa: E402
 
 EXAMPLES = {"2mass": 0.5, "wearballs": 1.5, "woodpecker": 1.0}
@@ -65,6 +66,49 @@ FIRST_STEP = textwrap.dedent("""
     simulate(model, RunSettings(break_time=dt))
     print(json.dumps({"first_step": time.time() - float(sys.argv[1])}))
 """)
+
+WOODPECKER_TIME, WOODPECKER_STEP = 2.0, 1e-5  # s: simulated time of both runs, Siconos' fixed step
+PUBLISHED_PERIOD = 0.1461  # s, Siconos' Woodpecker.ref (Leine, Glocker, van Campen 2003: 0.1452 s)
+
+SICONOS_WOODPECKER = """
+import json, sys, time
+import numpy as np
+import siconos.kernel as sk
+import siconos.numerics as sn
+rO, rM, hM, lM, lG, hS, lS = 0.0025, 0.0031, 0.0058, 0.010, 0.015, 0.02, 0.0201
+mM, mS, JM, JS, c, g = 0.0003, 0.0045, 5.0e-9, 7.0e-7, 0.0056, 9.81
+h, T = float(sys.argv[1]), float(sys.argv[2])
+M = np.array([[mS + mM, mS * lM, mS * lG], [mS * lM, JM + mS * lM * lM, mS * lM * lG], [mS * lG, mS * lM * lG, JS + mS * lG * lG]])
+K = np.array([[0, 0, 0], [0, c, -c], [0, -c, c]])
+ds = sk.LagrangianLinearTIDS([0.0, -0.1036, -0.2788], [-0.3411, 0.0, -7.4583], M, K, np.zeros((3, 3)))
+ds.setFExtPtr(np.array([-(mS + mM) * g, -mS * lM * g, -mS * lG * g]))
+nsds = sk.NonSmoothDynamicalSystem(0.0, T)
+nsds.insertDynamicalSystem(ds)
+r1 = sk.LagrangianLinearTIR(np.array([[0, 0, -hS], [1, lM, lG - lS]]), np.array([lM + lG - lS - rO, 0]))
+nsds.link(sk.Interaction(sk.NewtonImpactFrictionNSL(0.5, 0.0, 0.3, 2), r1), ds)
+for sign in (1.0, -1.0):
+    r = sk.LagrangianLinearTIR(np.array([[0, sign * hM, 0], [1, rM, 0]]), np.array([rM - rO, 0]))
+    nsds.link(sk.Interaction(sk.NewtonImpactFrictionNSL(0.0, 0.0, 0.3, 2), r), ds)
+td = sk.TimeDiscretisation(0.0, h)
+sim = sk.TimeStepping(nsds, td)
+sim.insertIntegrator(sk.MoreauJeanOSI(0.5))
+sim.insertNonSmoothProblem(sk.FrictionContact(2, sn.SICONOS_FRICTION_2D_NSGS))
+rows = []
+start = time.perf_counter()
+while sim.hasNextEvent():
+    sim.computeOneStep()
+    rows.append([sim.nextTime(), *ds.q()])
+    sim.nextStep()
+wall = time.perf_counter() - start
+a = np.array(rows)
+t, y, phiM, phiS = a.T
+up = np.flatnonzero((phiS[:-1] < -0.05) & (phiS[1:] >= -0.05))
+cross = t[up][t[up] > 1.0]
+late = t > 1.0
+print(json.dumps({"steps": len(rows), "wall": wall, "period": float(np.diff(cross).mean()),
+                  "descent": float(-(y[late][-1] - y[late][0]) / (t[late][-1] - t[late][0])),
+                  "ring": [float(phiM[late].min()), float(phiM[late].max())], "bird": [float(phiS[late].min()), float(phiS[late].max())]}))
+"""
 
 SICONOS = textwrap.dedent("""
     import json, sys, time
@@ -172,9 +216,75 @@ def bouncing_ball(cache_root: Path) -> None:
     print(f"ratio mbds/Siconos steps per second: {ours / rate:.2f}")
 
 
+OMEGAS = (40.0, 50.0, 62.83185307, 80.0, 100.0)
+"""c'omega (rad/s) of the wearballs drive swept by :func:`stick_slip`."""
+
+SWEEP_TIME = 0.3
+"""Simulated time (s) of each run of the sweep."""
+
+
+def stick_slip(cache_root: Path) -> None:
+    """Wall time per simulated second of campaigns/wearballs across its drive frequency c'omega:
+    resting and stick-slip regimes must not collapse the step (goal: all within 3x of the
+    fastest). The variants differ in a constant only, so they share one compiled model."""
+    print("\n## stick-slip: wearballs across c'omega\n")
+    print("| c'omega rad/s | steps | mean step s | wall s per simulated s |")
+    print("|---|---|---|---|")
+    os.environ["MBDS_CACHE_DIR"] = str(cache_root / "wearballs")
+    costs = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for omega in OMEGAS:
+            folder = Path(tmp) / f"omega{omega:g}"
+            shutil.copytree(ROOT / "campaigns" / "wearballs", folder)
+            cns = folder / "wearballs.cns"
+            cns.write_text("".join(f"c'omega = {omega!r}\n" if line.startswith("c'omega") else line
+                                   for line in cns.read_text().splitlines(keepends=True)))
+            steps, wall = timed_run(folder, SWEEP_TIME)
+            costs.append(wall / SWEEP_TIME)
+            print(f"| {omega:g} | {steps:.0f} | {SWEEP_TIME / steps:.2e} | {costs[-1]:.2f} |")
+    print(f"\nslowest / fastest: {max(costs) / min(costs):.2f} (goal: at most 3)")
+
+
+def woodpecker(cache_root: Path) -> None:
+    """The woodpecker toy in mbds (campaigns/woodpecker) and in Siconos (the published
+    small-angle model: LagrangianLinearTIDS, three LagrangianLinearTIR contacts with
+    NewtonImpactFrictionNSL, Moreau-Jean theta = 1/2, 2-D friction contact solved by NSGS, fixed
+    steps of WOODPECKER_STEP): period error against PUBLISHED_PERIOD, descent and wall time per
+    simulated second, both over the second of a 2 s run."""
+    print("\n## woodpecker, mbds against Siconos (Moreau-Jean)\n")
+    print("| | period ms | period error | descent mm/s | sleeve rad | bird rad | wall s per simulated s |")
+    print("|---|---|---|---|---|---|---|")
+    os.environ["MBDS_CACHE_DIR"] = str(cache_root / "woodpecker")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = load_model(ROOT / "campaigns" / "woodpecker")
+    simulate(model, RunSettings(break_time=0.001))  # warm-up: compiles the stepper
+    start = time.perf_counter()
+    result = simulate(model, RunSettings(break_time=WOODPECKER_TIME))
+    wall = time.perf_counter() - start
+    impacts = velocity_jumps(result.time, result.u, result.a, (1.0, 0.01, 0.015), 1e-3)
+    ours = cycle_figures(result.time, result.q, impacts, 1.0)
+    print(f"| mbds | {1e3 * ours.period:.2f} | {ours.period / PUBLISHED_PERIOD - 1:+.2%} | "
+          f"{1e3 * ours.descent_speed:.1f} | {ours.ring_limits[0]:.4f} .. {ours.ring_limits[1]:.4f} | "
+          f"{ours.bird_limits[0]:.4f} .. {ours.bird_limits[1]:.4f} | {wall / WOODPECKER_TIME:.2f} |")
+    try:
+        out = subprocess.run([SICONOS_PYTHON, "-c", SICONOS_WOODPECKER, str(WOODPECKER_STEP), str(WOODPECKER_TIME)],
+                             capture_output=True, text=True, check=True)
+    except (OSError, subprocess.CalledProcessError) as error:
+        print(f"Siconos: MISSING or failing ({error}); install it with `apt-get install -y python3-siconos`")
+        return
+    theirs = json.loads(out.stdout.strip().splitlines()[-1])
+    ring, bird = theirs["ring"], theirs["bird"]
+    print(f"| Siconos | {1e3 * theirs['period']:.2f} | {theirs['period'] / PUBLISHED_PERIOD - 1:+.2%} | "
+          f"{1e3 * theirs['descent']:.1f} | {ring[0]:.4f} .. {ring[1]:.4f} | {bird[0]:.4f} .. {bird[1]:.4f} | "
+          f"{theirs['wall'] / WOODPECKER_TIME:.2f} |")
+
+
 def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         examples(Path(tmp))
+        stick_slip(Path(tmp))
+        woodpecker(Path(tmp))
         bouncing_ball(Path(tmp))
     print("\ngoals: start-up warm < 2 s; woodpecker sim s / wall s > 1 (1 s simulated in under 1 s)")
 

@@ -9,8 +9,10 @@ angles, the bird's centre at height y + lM Rz_ring + lG Rz_bird. Where the bird'
 for contacts is a separate choice, :data:`BIRD_POSITIONS`: ``exact`` places its centre on the
 two arms (lM cos + lG cos, y + lM sin + lG sin); ``small-angle`` uses the same linearisation as
 the energies; ``beak`` places it so that the beak tip (-lS, hS) follows the small-angle
-kinematics of the reference while the outline rotates exactly. Further variants are one entry
-of that table.
+kinematics of the reference while the outline rotates exactly, and carries the sleeve's inner
+face on two dependent bodies whose corners follow the reference's kinematics too (the example's
+files; this variant reproduces the published limit cycle). Further variants are one entry of
+that table.
 """
 
 from __future__ import annotations
@@ -54,6 +56,24 @@ def _beak(mb, ring, bird, lM, lG):
     return lM + lG - lS * (1 - c), ring.y + lM * ring.Rz + lG * bird.Rz + hS * (1 - c) - lS * (bird.Rz - s)
 
 
+def _sleeve_corners(mb, ring):
+    """The sleeve's inner face as two bodies turning with the ring, ringSideU (upper half) and
+    ringSideL (lower half), placed so that their corners (r_M, +-h_M) follow the reference's
+    small-angle kinematics: x = r_M -+ h_M sin(Rz), moving vertically with y' + r_M Rz'. Returns
+    (body, watched corner point) pairs."""
+    rM = mb.constant("rM", 0.0031)  # sleeve's inner radius (m)
+    hM = mb.constant("hM", 0.0058)  # sleeve's half height (m)
+    c, s = sympy.cos(ring.Rz), sympy.sin(ring.Rz)
+    corners = []
+    for name, sign, y0, y1, point in (("ringSideU", 1, 0.0, 0.0058, "3"), ("ringSideL", -1, -0.0058, 0.0, "0")):
+        corner = mb.body(name, _rectangle(0.0031, 0.0041, y0, y1), density=1000, thickness=0.005, color=(1, 1, 0))
+        mb.dependent(corner.x, rM * (1 - c))
+        mb.dependent(corner.y, ring.y + rM * (ring.Rz - s) + sign * hM * (1 - c))
+        mb.dependent(corner.Rz, ring.Rz)
+        corners.append((corner, point))
+    return corners
+
+
 BIRD_POSITIONS = {"exact": _exact, "small-angle": _small_angle, "beak": _beak}
 """The bird's centre (x, y) (m) from the builder, the ring and bird bodies and the arms lM, lG
 (a variant may declare constants of its own)."""
@@ -73,13 +93,16 @@ def build(folder: Path, bird_position: str = "exact") -> Path:
                     color=(0.6, 0.4, 0.2))
     bird = mb.body("bird", shapes.polygon(BIRD_OUTLINE), mass=0.0045, inertia=7e-7, density=1000,
                    thickness=0.005, color=(0, 0.4, 1), position=(0, 0, -0.2788), velocity=(0, 0, -7.4583))
-    side = mb.body("ringSideR", _rectangle(0.0031, 0.0041, -0.0058, 0.0058), virtual_to=ring, density=1000,
+    small_angle_contacts = bird_position == "beak"
+    wall = (0.0036 if small_angle_contacts else 0.0031, 0.0041)  # the inner half is on the sides below
+    side = mb.body("ringSideR", _rectangle(*wall, -0.0058, 0.0058), virtual_to=ring, density=1000,
                    thickness=0.005, color=(1, 1, 0), position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
 
     mb.generalized(ring.y, ring.Rz, bird.Rz)
     bird_x, bird_y = BIRD_POSITIONS[bird_position](mb, ring, bird, lM, lG)
     mb.dependent(bird.x, bird_x)
     mb.dependent(bird.y, bird_y)
+    corners = _sleeve_corners(mb, ring) if small_angle_contacts else []
 
     bird_height = ring.y + lM * ring.Rz + lG * bird.Rz  # linearised in the angles
     mb.kinetic_energy(E.point_mass_kinetic(ring.m, 0, ring.y) + ring.Jzz * sympy.diff(ring.Rz) ** 2 / 2)
@@ -89,8 +112,14 @@ def build(folder: Path, bird_position: str = "exact") -> Path:
 
     mb.contact(stick, side, friction=0.3)
     mb.contact(stick, bird, friction=0.3, restitution_normal=0.5)
+    for corner, _ in corners:
+        mb.contact(stick, corner, friction=0.3)
     mb.watch(bird, "0")
-    mb.watch(side, "0,3")
+    if corners:
+        for corner, point in corners:
+            mb.watch(corner, point)
+    else:
+        mb.watch(side, "0,3")
     mb.world(minimum_timestep=1e-12, maximum_timestep=1e-5, maximum_penetration=1e-6, break_time=1.0)
     return mb.write(folder, "woodpecker")
 

@@ -37,7 +37,9 @@ from mbds.kernel.rollback import edge_end_point
 
 REST_FRACTION = 0.01
 """A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
-dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration."""
+dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration. A
+closed contact approaching slower than that (round-off, or the drift of a pivoting contact)
+still gets its velocity from the impact laws, but this does not count as an impact."""
 STICK_FRACTION = 1e-3
 """A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
 stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero."""
@@ -162,15 +164,31 @@ def contact_laws(contact_law, nc, contacts, model, point_interval, rows, events,
 
 
 @jit(inline="always")
-def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, nc):
-    """M, its Cholesky factor, h, M^-1 h and M^-1 W of the contacts; False if M is not SPD."""
+def free_dynamics(mass_matrix, h_vector, q, u, t, p, dyn):
+    """M, its Cholesky factor, h and M^-1 h (the accelerations without contact forces) at
+    (q, u, t); False if M is not positive definite."""
     mass_matrix(q, t, p, dyn.M)
     if not cholesky(dyn.M, dyn.L):
         return False
     h_vector(q, u, t, p, dyn.hv)
     cholesky_solve(dyn.L, dyn.hv, dyn.minv_h)
+    return True
+
+
+@jit(inline="always")
+def contact_directions(rows, dyn, nc):
+    """M^-1 W_N and M^-1 W_T of the nc contacts (after :func:`free_dynamics`)."""
     inverse_mass_rows(dyn.L, rows.WN, nc, dyn.YN)
     inverse_mass_rows(dyn.L, rows.WT, nc, dyn.YT)
+
+
+@jit(inline="always")
+def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, nc):
+    """:func:`free_dynamics` and :func:`contact_directions` at (q, u, t); False if M is not
+    positive definite."""
+    if not free_dynamics(mass_matrix, h_vector, q, u, t, p, dyn):
+        return False
+    contact_directions(rows, dyn, nc)
     return True
 
 

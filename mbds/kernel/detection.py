@@ -21,7 +21,6 @@ from __future__ import annotations
 import numpy as np
 
 from mbds.kernel.jit import jit
-from mbds.kernel.layout import DT_MAX, MAX_PEN
 
 
 @jit
@@ -214,18 +213,15 @@ def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_po
         c_point[k, 1] = world[i, 1]
 
 
+
 @jit
-def detection_margins(model, vel, settings, margin):
-    """Detection margin of each pair (m): maxPen + (1 + f) v dt_max, f the larger
-    ``maximumDisplacementFactor`` of the two bodies and v their largest vertex speed: at least
-    one maximum step of travel, so no vertex can pass from beyond the margin to beyond the skin
-    in one step."""
-    carrier, radius = model.carrier, model.radius
-    for k in range(model.pair_bodies.shape[0]):
-        extent = 0.0
-        for side in range(2):
-            b = model.pair_bodies[k, side]
-            c = carrier[b] if carrier[b] >= 0 else b
-            speed = np.sqrt(vel[c, 0] ** 2 + vel[c, 1] ** 2) + abs(vel[c, 2]) * (radius[b] + radius[c])
-            extent = max(extent, (1.0 + model.factor[b]) * speed * settings[DT_MAX])
-        margin[k] = settings[MAX_PEN] + extent
+def tracked_depth(world, contacts, count):
+    """The deepest penetration (m) at the world points ``world`` of the first ``count`` known
+    contacts whose vertex still lies over its edge (0 <= xi <= 1); 0 if none penetrates. Unlike
+    detection, this sees a vertex however deep it went."""
+    depth = 0.0
+    for k in range(count):
+        xi, gap, _, _ = vertex_edge(world, contacts.vertex[k], contacts.edge[k])
+        if 0.0 <= xi <= 1.0:
+            depth = max(depth, -gap)
+    return depth

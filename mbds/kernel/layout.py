@@ -45,9 +45,10 @@ ModelArrays = namedtuple(
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
-Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin")
+Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin motion")
 """Body kinematics at one state: world points (m), bounding boxes, poses, velocities, the
-Jacobians B and their derivative terms, dependent coordinates, detection margins (m)."""
+Jacobians B and their derivative terms, dependent coordinates, detection margins (m) and
+speed bounds (see mbds.kernel.motion)."""
 
 Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
@@ -72,10 +73,14 @@ phase, compression losses (J), accelerations at both ends and Heun's predictor s
 ROLLBACK_SLOTS = 3
 LAST_SLOT = ROLLBACK_SLOTS - 1
 
-Rollback = namedtuple("Rollback", "q u clock temperature records_int records_float record_count last_sample")
+Rollback = namedtuple(
+    "Rollback", "q u clock temperature records_int records_float record_count last_sample cap tracked",
+)
 """The starts of the last ROLLBACK_SLOTS steps (slot LAST_SLOT: the last, 0: the oldest:
 coordinates, clock and point temperatures) and their contact records, for going back (a record
-count of -1: the slot cannot be gone back to); the time of the last history sample (s)."""
+count of -1: the slot cannot be gone back to); the time of the last history sample (s); the
+longest next step (s) after a step was rejected; how many contacts of the last step are checked
+at its end."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -95,7 +100,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     f = np.zeros
     bodies = Bodies(
         f((points, 2)), f((nb, 4)), f((nb, 3)), f((nb, 3)), f((nb, 3, n)), f((nb, 3)), f((nb, 3)),
-        f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs),
+        f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs), f((nb, 4)),
     )
     i = np.int64
     contacts = Contacts(
@@ -110,7 +115,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     s = ROLLBACK_SLOTS
     rollback = Rollback(
         f((s, n)), f((s, n)), f((s, CLOCK)), f((s, points)), f((s, 2 * c, 3), i), f((s, 2 * c, RECORD_COLUMNS)),
-        np.full(s, -1, dtype=i), np.full(1, -np.inf),
+        np.full(s, -1, dtype=i), np.full(1, -np.inf), np.full(1, np.inf), f(1, i),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)
 

@@ -33,17 +33,20 @@ import numpy as np
 
 from mbds.kernel.contact_problem import (
     CLOSED_FRACTION,
+    REST_FRACTION,
     accelerations,
+    contact_directions,
     contact_forces,
     contact_laws,
     dynamics,
+    free_dynamics,
     row_dot,
 )
 from mbds.kernel.detection import (
     bounding_boxes,
     contact_geometry,
     detect_contacts,
-    detection_margins,
+    tracked_depth,
     world_points,
 )
 from mbds.kernel.events import log_event
@@ -86,6 +89,7 @@ from mbds.kernel.layout import (
     ZERO_VELOCITY,
     T,
 )
+from mbds.kernel.motion import body_motion, detection_margins, reach_limit
 from mbds.kernel.random import uniform
 from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, record
 from mbds.kernel.sampling import sample
@@ -120,21 +124,30 @@ def advance(
         # --- 1, 2: kinematics and contacts at the current state
         _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
         world_points(bodies.pose, model.points, model.point_start, bodies.world)
+        tracked = tracked_depth(bodies.world, contacts, back.tracked[0])  # before detection replaces them
+        if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
+            log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
+            return NOT_FINITE
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, bodies.motion, False)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, dyn.minv_h, bodies.motion, True)
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
-        detection_margins(model, bodies.vel, settings, bodies.margin)
+        detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
                              model.skin, bodies.margin, contacts.pair, contacts.vb, contacts.vertex, contacts.eb,
                              contacts.edge, contacts.xi, contacts.gap, contacts.normal, contacts.point, contacts.work)
         if nc < 0:
             return CAPACITY
         # --- 3: accept the step that led here, or go back to its start with half the step
-        penetration = 0.0
+        penetration = tracked
         for i in range(nc):
             penetration = max(penetration, -contacts.gap[i])
         if penetration > max(settings[MAX_PEN], clock[LAST_PENETRATION]) and back.record_count[LAST_SLOT] >= 0:
-            if kept_slot(back, LAST_SLOT, LAST_SLOT, settings[DT_MIN]) >= 0:  # the start of the last step
+            taken = t - back.clock[LAST_SLOT, T]
+            if taken > settings[DT_MIN] * 1.000001:  # the start of the last step
                 go_back(LAST_SLOT, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
+                back.cap[0] = 0.5 * taken
+                back.tracked[0] = 0
                 clock[REJECTED] += 1.0
                 continue
             log_event(events, t, EVENT_OVER_PENETRATION, penetration, settings[MAX_PEN])
@@ -149,8 +162,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-                if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
-                    return NOT_FINITE
+                contact_directions(rows, dyn, nc)
                 contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
@@ -170,23 +182,25 @@ def advance(
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-        if not dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc):
-            log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
-            return NOT_FINITE
+        contact_directions(rows, dyn, nc)
         # --- 4: impact
         # a closed contact impacts when it approaches faster than ZeroVelocityTolerance, or when a
         # slower approach would take it beyond maximumPenetration within a maximum step (else the
         # step would shrink to minimumTimestep and stay there)
         impacting = False
+        counted = False
+        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for i in range(nc):
             gap, rate = contacts.gap[i], rows.gd_n[i]
             if gap <= CLOSED_FRACTION * settings[MAX_PEN] and rate < 0.0 and (
                     rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN]):
                 impacting = True
+                counted = counted or rows.gd_n[i] < -rest
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
                             point_loss, point_interval, back, events, t)
+        if counted:
             clock[IMPACTS] += 1.0
         # --- 5: forces between impacts
         na, forces_ok = contact_forces(nc, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
@@ -200,9 +214,11 @@ def advance(
             if slot >= 0:
                 go_back(slot, q, u, clock, model, point_loss, point_interval, back)
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
+                back.tracked[0] = 0
                 continue
         # --- 6: step size
-        dt = _step_size(nc, na, contacts.gap, rows, pb, a1, settings, clock)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, bodies.motion, False)
+        dt = _step_size(model, nc, na, contacts.gap, bodies, rows, pb, a1, settings, clock, back)
         clock[DT] = dt
         t2 = t + dt
         target = min(clock[NEXT_SAMPLE], until)
@@ -212,19 +228,24 @@ def advance(
         # --- 7: Heun step with the contact set of step 5
         _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
               t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
+        back.tracked[0] = nc
         if heated:
             cool(model.point_heat, point_interval, dt)
         clock[STEPS] += 1.0
-        if impacting and settings[SAMPLE_AT_COLLISION] > 0.0:
+        if counted and settings[SAMPLE_AT_COLLISION] > 0.0:
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
 
 
 @jit
-def _step_size(nc, na, gap, rows, pb, a1, settings, clock):
-    """The next step (s): grown by 1.5 up to maximumTimestep, limited so that no approaching
-    open contact goes deeper than half maximumPenetration and no sliding contact passes zero
-    sliding speed, at least minimumTimestep."""
-    dt = min(1.5 * clock[DT], settings[DT_MAX])
+def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
+    """The next step (s): grown by 1.5 up to maximumTimestep; after a rejected step at most half
+    of it; no longer than the reach limit of every pair (no vertex beyond a detection margin can
+    penetrate); limited so that no approaching open contact goes deeper than half
+    maximumPenetration by its own motion and no sliding contact passes zero sliding speed; at
+    least minimumTimestep."""
+    dt = min(1.5 * clock[DT], settings[DT_MAX], back.cap[0])
+    back.cap[0] = np.inf
+    dt = reach_limit(model, bodies.motion, settings, bodies.margin, dt)
     for i in range(nc):
         if gap[i] > CLOSED_FRACTION * settings[MAX_PEN]:  # open: reach at most half maxPen
             accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]

@@ -111,7 +111,8 @@ def test_every_woodpecker_bird_position_builds_a_model_mbds_reads(tmp_path, vari
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = assemble_model(read_quietly(tmp_path))
-    assert [str(c) for c in model.dependent] == ["b'bird'x[t]", "b'bird'y[t]"]
+    sides = [f"b'ringSide{s}'{c}[t]" for s in "UL" for c in ("x", "y", "Rz")] if variant == "beak" else []
+    assert [str(c) for c in model.dependent] == ["b'bird'x[t]", "b'bird'y[t]", *sides]
     if variant == "small-angle":  # y = y_ring + lM Rz_ring + lG Rz_bird: J = (1, lM, lG), j = 0
         dc = read_quietly(tmp_path).dependent.coordinates[1]
         assert [e.text for e in dc.jacobian] == ["1", "c'lM", "c'lG"] and dc.jacobian_scalar.text == "0"

@@ -154,3 +154,67 @@ def energy_residual(result: RunResult) -> np.ndarray:
     """E_me(0) - E_me(t) - lost(t) + drive(t) at every sample (J): zero when the mechanical
     energy, the lost work and the work of rheonomic drivers balance."""
     return result.energy[0] - result.energy - result.lost + result.drive
+
+
+@dataclass
+class BoxStack:
+    """Boxes (width, height (m), mass (kg)) stacked on the floor, each resting centred on the one
+    below, the first on the floor; friction c'mu and restitution c'e at every contact; world
+    settings as in :class:`BodyOnFloor`. Every stack of the same number of boxes shares one
+    compiled model."""
+
+    boxes: list[tuple[float, float, float]]
+    friction: float = 0.5
+    restitution: float = 0.0
+    dt_max: float = 1e-4
+    max_penetration: float = 1e-8
+    break_time: float = 1.0
+
+    def write(self, folder: Path) -> Path:
+        """Write the model files into ``folder`` (created); return the folder."""
+        folder = Path(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+        names = [f"box{k}" for k in range(len(self.boxes))]
+        n = 3 * len(names)
+        files = {
+            "floor.bdy": _body("floor", (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), {"mass": 1.0, "InertiaZZ": 1.0}),
+            "floor.exs": _shape(np.array([[FLOOR_HALF_WIDTH, 0.0], [-FLOOR_HALF_WIDTH, 0.0],
+                                          [-FLOOR_HALF_WIDTH, -FLOOR_DEPTH], [FLOOR_HALF_WIDTH, -FLOOR_DEPTH]])),
+        }
+        base = 0.0
+        diagonal, hv, kinetic, potential = [], [], [], []
+        for name, (width, height, mass) in zip(names, self.boxes):
+            inertia = mass * (width**2 + height**2) / 12.0
+            files[f"{name}.bdy"] = _body(name, (0.0, base + 0.5 * height, 0.0), (0.0, 0.0, 0.0),
+                                         {"mass": mass, "InertiaZZ": inertia})
+            files[f"{name}.exs"] = _shape(rectangle(width, height))
+            base += height
+            b = f"b'{name}'"
+            diagonal += [f"{b}m", f"{b}m", f"{b}Jzz"]
+            hv += ["0", f"-{b}m*c'g", "0"]
+            kinetic.append(f"{b}m*(Derivative[1][{b}x][t]^2+Derivative[1][{b}y][t]^2)"
+                           f"+{b}Jzz*Derivative[1][{b}Rz][t]^2")
+            potential.append(f"{b}m*c'g*{b}y[t]")
+        contact = {"friction": "c'mu", "restitutionNormal": "c'e", "restitutionTangent": "0", "parameterNi": "0"}
+        pairs = [(names[0], "floor")] + list(zip(names[1:], names[:-1]))
+        files.update({
+            "model.wld": _ini({
+                "main": {
+                    "numberOfGeneralizedCoordinates": str(n), "minimumTimestep": "1e-10",
+                    "maximumTimestep": _num(self.dt_max), "maximumPenetration": _num(self.max_penetration),
+                    "writeToHistoryMultipleOfMaximumTimestep": "10", "breakTime": _num(self.break_time),
+                },
+                "bodies": {f"body{k + 1}": f"{name}.bdy" for k, name in enumerate(names + ["floor"])},
+            }),
+            "model.gc": "".join(f"b'{name}'{c}[t]\n" for name in names for c in ("x", "y", "Rz")),
+            "model.mmx": "".join("\t".join(d if i == j else "0" for j in range(n)) + "\n"
+                                 for i, d in enumerate(diagonal)),
+            "model.hv": "\n".join(hv) + "\n",
+            "model.me": "(" + "+".join(kinetic) + ")/2+" + "+".join(potential) + "\n",
+            "model.cns": f"c'g = 9.81\nc'mu = {_num(self.friction)}\nc'e = {_num(self.restitution)}\n",
+            "model.cop": _ini({f"{a}-{b}": contact for a, b in pairs}),
+            "model.wtc": _ini({name: {"contactWatch": "all"} for name in names}),
+        })
+        for name, text in files.items():
+            (folder / name).write_text(text)
+        return folder

@@ -30,7 +30,7 @@ def test_same_seed_gives_bit_identical_runs():
     runs = [run_folder(CAMPAIGNS / "wearballs", 0.3, seed=seed, lexico_range=(1e-9, 1e-7)) for seed in (11, 11, 12)]
     first, again, other = runs
     for name in ("time", "q", "u", "a", "energy", "lost", "drive", "watches", "events"):
-        assert np.array_equal(getattr(first, name), getattr(again, name), equal_nan=True), name
+        assert np.array_equal(getattr(first, name), getattr(again, name), equal_nan=True), name  # NaN: no temperature
     assert np.array_equal(first.state.clock, again.state.clock)
     assert not np.array_equal(first.state.rng, other.state.rng)  # the other seed drew other tolerances
 
@@ -49,4 +49,4 @@ def test_woodpecker_settles_into_a_periodic_motion():
     print("\n".join(figures.lines()))
     assert len(figures.periods) >= 3
     assert figures.spread() < PERIOD_SPREAD
-    assert figures.bird_limits[1] == pytest.approx(0.1196, abs=2e-3)  # the beak reaches the pole
+    assert figures.bird_limits[1] == pytest.approx(0.1203, abs=2e-3)  # the beak reaches the pole

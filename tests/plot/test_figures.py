@@ -111,7 +111,8 @@ def test_coordinates_has_a_panel_per_unit(runs):
     figure = plot.coordinates(runs["woodpecker"])
     metres, radians = figure.axes
     assert metres.get_ylabel() == "coordinate (m)" and radians.get_ylabel() == "coordinate (rad)"
-    assert len(metres.lines) == 3 and len(radians.lines) == 2  # ring y, bird x, y; ring and bird Rz
+    # ring y, bird x, y, both sleeve sides x, y; ring, bird and both sleeve sides Rz
+    assert len(metres.lines) == 7 and len(radians.lines) == 4
 
 
 def test_wear_of_a_campaign_has_a_panel_per_variant_and_a_line_per_version(campaign_job):

@@ -14,13 +14,14 @@ def history(folder):
 
 def test_dependent_coordinates_and_poses_of_the_woodpecker(model_runs):
     with history(model_runs["woodpecker"]) as ds:
-        assert list(ds["dependent"].values) == ["b'bird'x", "b'bird'y"]
-        assert list(ds["dependent_unit"].values) == ["m", "m"]
+        sides = [f"b'ringSide{s}'{c}" for s in "UL" for c in ("x", "y", "Rz")]
+        assert list(ds["dependent"].values) == ["b'bird'x", "b'bird'y", *sides]
+        assert list(ds["dependent_unit"].values) == ["m", "m"] + ["m", "m", "rad"] * 2
         bird = ds.sel(body="bird")
         np.testing.assert_array_equal(bird["body_x"].values, ds["dependent_q"].values[:, 0])
         np.testing.assert_array_equal(bird["body_y"].values, ds["dependent_q"].values[:, 1])
         np.testing.assert_array_equal(bird["body_angle"].values, ds["q"].sel(coordinate="b'bird'Rz").values)
-        assert list(ds["body_kind"].values) == ["moving", "fixed", "moving", "virtual"]
+        assert list(ds["body_kind"].values) == ["moving", "fixed", "moving", "virtual", "moving", "moving"]
         # the virtual ringSideR moves rigidly with the ring: its origin keeps its distance and angle
         ring, side = ds.sel(body="ring"), ds.sel(body="ringSideR")
         distance = np.hypot(side["body_x"] - ring["body_x"], side["body_y"] - ring["body_y"]).values
