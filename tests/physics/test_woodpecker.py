@@ -6,7 +6,6 @@ example (siconos-tutorials, ``Woodpecker.ref``, same constants): period 0.1461 s
 the sleeve 0.133 m/s, bird angle -0.530 .. 0.120 rad, sleeve angle +-0.1036 rad.
 """
 
-import numpy as np
 import pytest
 
 from tests.physics.limit_cycle import cycle_figures, velocity_jumps
