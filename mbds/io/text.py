@@ -42,6 +42,9 @@ def read_text(path: str | Path) -> str:
         raise ModelError(f"cannot read file: {exc.strerror}", path) from None
     if raw.startswith(b"\xef\xbb\xbf"):
         raw = raw[3:]
+    if b"\x00" in raw:
+        line = raw.count(b"\n", 0, raw.index(b"\x00")) + 1
+        raise ModelError("binary data (NUL character) in a text file", path, line)
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError:
@@ -58,12 +61,13 @@ def strip_comment(text: str) -> str:
     return (text if cut < 0 else text[:cut]).strip()
 
 
-def significant_lines(text: str) -> list[Line]:
-    """The non-empty lines of ``text`` after comments are removed, with their numbers."""
+def significant_lines(text: str, file: str | Path | None = None) -> list[Line]:
+    """The non-empty lines of ``text`` (of ``file``, for errors) after comments are removed,
+    with their numbers."""
     lines = []
     for number, raw in enumerate(text.splitlines(), start=1):
         if "\x00" in raw:
-            raise ModelError("binary data (NUL character) in a text file", None, number)
+            raise ModelError("binary data (NUL character) in a text file", file, number)
         content = strip_comment(raw)
         if content:
             lines.append(Line(number, content))

@@ -15,6 +15,7 @@ from mbds.io.coordinates import CoordinateName, parse_coordinate_name
 from mbds.io.folder import ModelFiles, read_model_files
 from mbds.io.ini import Located, split_list
 from mbds.model.bodies import GENERALIZED, POSE, Body, assemble_bodies
+from mbds.model.checks import check_laws, check_mass_matrix
 from mbds.model.contacts import ContactPair, assemble_contacts
 from mbds.model.equations import ExpressionReader, Parameters, gather_expressions
 from mbds.model.watches import Watch, assemble_watches
@@ -64,6 +65,7 @@ def load_model(path: str | Path, *, version: int = 0, compile: bool = True, cach
     not to. ``version`` selects the ``[body:k]`` watch sections. Raises :class:`ModelError`."""
     files = read_model_files(path)
     model = assemble_model(files, version)
+    check_mass_matrix(model.expressions, model.parameters, model.q0, files.mass_matrix.path)
     if compile:
         model.compile(cache_dir)
     return model
@@ -73,6 +75,7 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
     """A :class:`Model` from files already read."""
     bodies = assemble_bodies(files)
     pairs, laws = assemble_contacts(files, bodies)
+    check_laws(laws, files)
     expressions, params = gather_expressions(files, bodies, laws)
     watches = assemble_watches(files, bodies, version)
     q0, qd0 = _start_state(files, bodies)
