@@ -4,27 +4,35 @@ or a contact law; their cartesian product; and the model files of one variant.
 Keys (docs/campaigns.md): ``c'name`` (a constant of the ``.cns`` file), ``world.<key>`` (a
 number, flag or expression key of the world file's ``[main]``) and ``contact.<section>.<key>``
 (a law key of section ``[section]`` of the ``.cop`` file, e.g. ``contact.mass1-mass2.friction``).
-Values are separated by commas; numbers use ``.`` as decimal mark, as everywhere in a job file
+Values are separated by commas, and by nothing else (``0.2 0.4`` or ``0.2; 0.4`` is an error, not
+one value); each value is checked as the model file would check it, at the job file's line; numbers use ``.`` as decimal mark, as everywhere in a job file
 (expressions are written into a model whose ``decimalSeparator`` is ``,`` with ``,``).
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import itertools
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from mbds.errors import ModelError
 from mbds.io.constants import format_constants
-from mbds.io.contacts import ContactLaw, ContactsFile, format_contacts
+from mbds.io.contacts import ContactLaw, ContactSection, ContactsFile, format_contacts
 from mbds.io.folder import ModelFiles
-from mbds.io.ini import Entry, Located, Section, read_settings, split_list
+from mbds.io.ini import Entry, Located, Section, check_rules, read_settings, split_list
 from mbds.io.text import QUOTES, parse_number
+from mbds.io.world import RULES as WORLD_RULES
 from mbds.io.world import WorldSettings, format_world, parse_world
+from mbds.model.checks import check_law_value
+from mbds.model.load import break_time
 
 CONSTANT, WORLD, CONTACT = "constant", "world", "contact"
 _VARIED_KINDS = ("number", "flag", "expression")  # settings kinds a variant may change
+_SEVERAL = re.compile(r"[\w.)\]`'\u2018\u2019]\s+[\w.(\[]")
+"""Two operands side by side with only blanks between them: several values, not one."""
 
 
 @dataclass(frozen=True)
@@ -68,18 +76,29 @@ def parse_parameter(key: str, text: str, line: int | None, files: ModelFiles, jo
     texts = tuple(split_list(text))
     if not texts or not all(texts):
         raise ModelError(f"'{key}' needs values separated by commas (e.g. 0.1, 0.2)", job_path, line)
+    for item in texts:
+        if ";" in item or _SEVERAL.search(item):
+            raise ModelError(f"'{key}': '{item}' reads as several values; separate values by commas only "
+                             "(e.g. 0.2, 0.4)", job_path, line)
     if len(set(texts)) != len(texts):
         raise ModelError(f"'{key}' lists a value twice", job_path, line)
     sep = files.separator
     if key.lower().startswith("world."):
         name = _field(WorldSettings, key[len("world."):], "world file [main]", key, job_path, line)
         values = tuple(_parse(WorldSettings, name, t, job_path, line, sep) for t in texts)
+        for value, item in zip(values, texts):
+            _check_world_value(files, name, value, f"'{key}' value '{item}'", job_path, line)
         return Parameter(key, WORLD, "", name, values, texts, line)
     if key.lower().startswith("contact."):
         section, _, law_key = key[len("contact."):].rpartition(".")
-        _section(files.contacts, section, key, job_path, line)
+        temperature = _section(files.contacts, section, key, job_path, line).law.initial_temperature
         name = _field(ContactLaw, law_key, "contact law", key, job_path, line)
         values = tuple(_parse(ContactLaw, name, t, job_path, line, sep) for t in texts)
+        for value, item in zip(values, texts):
+            if name == "initial_temperature":
+                continue
+            with _at(f"'{key}' value '{item}'", job_path, line):
+                check_law_value(name, value, files, temperature, job_path)
         return Parameter(key, CONTACT, section, name, values, texts, line)
     name = key[2:].strip()
     if name not in files.constants.values:
@@ -120,6 +139,15 @@ def variant_files(files: ModelFiles, variant: Variant) -> tuple[ModelFiles, dict
     return changed, texts
 
 
+def check_world_combinations(files: ModelFiles, parameters: tuple[Parameter, ...], job_path: Path) -> None:
+    """Every combination of the varied world keys passes the world file's checks
+    (minimumTimestep <= maximumTimestep, ...); see :func:`check_world`."""
+    world = tuple(p for p in parameters if p.kind == WORLD)
+    if world:
+        for variant in product(world):
+            check_world(files, variant, job_path)
+
+
 def check_world(files: ModelFiles, variant: Variant, job_path: Path) -> None:
     """The world settings of ``variant`` pass the world file's checks (minimumTimestep <=
     maximumTimestep, ...); ModelError at the line of its first world key otherwise."""
@@ -158,13 +186,34 @@ def _parse(cls, name: str, text: str, job_path: Path, line: int | None, separato
     return value
 
 
-def _section(contacts: ContactsFile, title: str, key: str, job_path: Path, line: int | None) -> None:
-    """Check that the ``.cop`` file has section ``[title]``."""
-    titles = [s.title for s in contacts.sections]
-    if title not in titles:
-        known = ", ".join(f"[{t}]" for t in titles) or "none"
-        raise ModelError(f"'{key}': the contact properties file has no section [{title}] (it has {known})",
-                         job_path, line)
+def _section(contacts: ContactsFile, title: str, key: str, job_path: Path, line: int | None) -> ContactSection:
+    """The ``.cop`` file's section ``[title]``; ModelError when there is none."""
+    for s in contacts.sections:
+        if s.title == title:
+            return s
+    known = ", ".join(f"[{s.title}]" for s in contacts.sections) or "none"
+    raise ModelError(f"'{key}': the contact properties file has no section [{title}] (it has {known})",
+                     job_path, line)
+
+
+@contextlib.contextmanager
+def _at(what: str, job_path: Path, line: int | None):
+    """ModelErrors of the block moved to the job file's ``line``, prefixed with ``what``."""
+    try:
+        yield
+    except ModelError as exc:
+        raise ModelError(f"{what}: {exc.message}", job_path, line) from None
+
+
+def _check_world_value(files: ModelFiles, name: str, value, what: str, job_path: Path, line: int | None) -> None:
+    """One varied world value in its range (``breakTime``: a positive time)."""
+    with _at(what, job_path, line):
+        if name == "break_time":
+            world = dataclasses.replace(files.world, settings=dataclasses.replace(files.world.settings, break_time=value))
+            break_time(dataclasses.replace(files, world=world), job_path)
+        elif name in WORLD_RULES:
+            settings = dataclasses.replace(files.world.settings, **{name: value})
+            check_rules(settings, {name: WORLD_RULES[name]}, None, job_path)
 
 
 def _with_law(contacts: ContactsFile, p: Parameter, value) -> ContactsFile:

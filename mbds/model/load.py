@@ -79,7 +79,7 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
     expressions, params = gather_expressions(files, bodies, laws)
     watches = assemble_watches(files, bodies, version)
     q0, qd0 = _start_state(files, bodies)
-    break_time = _break_time(files, bodies)
+    duration = break_time(files, files.world.path, bodies)
     return Model(
         files=files,
         version=version,
@@ -91,7 +91,7 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
         watches=watches,
         expressions=expressions,
         parameters=params,
-        break_time=break_time,
+        break_time=duration,
         q0=q0,
         qd0=qd0,
     )
@@ -134,12 +134,15 @@ def _generalized_start(files: ModelFiles, bodies: list[Body], q0: np.ndarray, qd
         qd0[index[name.name]] = numbers[1] if len(numbers) > 1 else 0.0
 
 
-def _break_time(files: ModelFiles, bodies: list[Body]) -> float:
+def break_time(files: ModelFiles, path, bodies: list[Body] = ()) -> float:
+    """The world's ``breakTime`` (s), a positive number; ModelError at its line of ``path``."""
     item = files.world.settings.break_time
-    expr = ExpressionReader(files, bodies).read(item, files.world.path, constant_only=True)
+    expr = ExpressionReader(files, list(bodies)).read(item, path, constant_only=True)
     values = {S.constant(name): v for name, v in files.constants.values.items()}
-    value = float(expr.subs(values).evalf())
+    try:
+        value = float(expr.subs(values).evalf())
+    except (TypeError, ValueError):
+        value = float("nan")
     if not np.isfinite(value) or value <= 0:
-        raise ModelError(f"breakTime must be a positive time, is {value}", files.world.path, item.line)
+        raise ModelError(f"breakTime must be a positive time, is {value}", path, item.line)
     return value
-

@@ -5,7 +5,6 @@ from __future__ import annotations
 import copy
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 
 from mbds.data.history import FILE_NAME, read_final_state, write_history
@@ -13,29 +12,15 @@ from mbds.data.legacy import HEADER_LINES, end_alert, event_alerts, write_legacy
 from mbds.data.record import RunRecord, make_record
 from mbds.errors import ModelError
 from mbds.io.folder import run_number, version_name
-from mbds.io.job import JobSettings
 from mbds.kernel import layout as K
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
+from mbds.simulation.options import RunOptions
 from mbds.simulation.run import RunState, RunStopped, continue_from, initial_state, simulate
 from mbds.simulation.versions import job_settings
 
 PROGRESS_CHUNK = 256
 """History samples per call of the stepper: how often progress and Ctrl-C are looked at."""
-
-
-@dataclass
-class RunOptions:
-    """``duration``: length of the run (s), default the world's ``breakTime``; ``seed`` of the
-    lexicographic tolerance draws (a continued run keeps the random state it starts from);
-    ``start_from``: the version whose end state the run starts from (None: the model's start);
-    ``job``: the job settings that apply (``lexicoRandomizationRange``, ``maxLinesInLog``; None:
-    those of the model folder's job file)."""
-
-    duration: float | None = None
-    seed: int = 0
-    start_from: int | None = None
-    job: JobSettings | None = None
 
 
 Progress = Callable[[float, float, float, float], None]

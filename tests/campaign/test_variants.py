@@ -53,14 +53,12 @@ def test_a_variant_world_that_fails_the_world_checks_is_refused_at_its_line(tmp_
     assert "variant v01 (world.minimumTimestep = 1): minimumTimestep is larger than maximumTimestep" in str(caught.value)
 
 
-def test_a_variant_that_breaks_the_model_fails_its_task_and_writes_nothing(tmp_path):
+def test_a_value_that_breaks_the_model_is_refused_at_its_job_file_line(tmp_path):
     job = two_mass(tmp_path, "contact.mass1-mass2.friction = 0.1, 2*c'nothing\n", jobs="000")
-    plan = expand(job)
-    good, bad = plan.task("v00/prepare"), plan.task("v01/prepare")
-    assert run_task(good)["state"] == DONE
-    result = run_task(bad)
-    assert result["state"] == "failed" and "nothing" in result["reason"], result
-    assert not bad.folder.exists()
+    with pytest.raises(ModelError) as caught:
+        expand(job)
+    assert str(caught.value).startswith(f"{job}:5: ") and "c'nothing" in str(caught.value)
+    assert not (job.parent / "campaign").exists()
 
 
 def test_values_are_written_with_the_models_decimal_separator(tmp_path):
