@@ -57,6 +57,7 @@ def run(
     break_time: float = typer.Option(None, "--break-time", help="Length of the run (s); default: breakTime."),
     start_from: int = typer.Option(None, "--from", help="Start where this version's run ended (e.g. 000)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the randomized lexicographic tolerances."),
+    force: bool = typer.Option(False, "--force", help="Replace a complete run, or version 000's copies of model files that changed."),
     debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
 ) -> None:
     """Run one version of a model and write its outputs into the version folder.
@@ -71,7 +72,7 @@ def run(
         raise typer.BadParameter("must be a positive time (s)", param_hint="--break-time")
     console = _console()
     with reported_errors(debug):
-        code = run_command(path, RunOptions(break_time, seed, start_from), console)
+        code = run_command(path, RunOptions(break_time, seed, start_from), console, force)
     raise typer.Exit(code)
 
 
