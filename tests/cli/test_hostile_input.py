@@ -164,3 +164,13 @@ def test_an_output_replaced_by_a_folder_is_an_error_not_a_traceback(ran_2mass):
     message = refused(mbds("run", version, "--break-time", 0.01, "--force"), str(version / "data.txt"), "folder")
     assert re.search("move it away", message)
     (version / "data.txt").rmdir()
+
+
+def test_check_covers_the_job_files_and_their_campaign_folders(tmp_path):
+    job = two_mass(tmp_path, "folder = ../..\n")
+    for target in (job.parent, job):
+        refused(mbds("check", "--no-compile", target), f"{job}:5", "not inside the job file's folder")
+    job.write_text(job.read_text().replace("folder = ../..", "folder = runs"))
+    code, out, err = mbds("check", "--no-compile", job.parent)
+    assert code == 0, err
+    assert f"ok {job}: 7 tasks in 1 chain(s)" in " ".join(out.split())
