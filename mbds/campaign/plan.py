@@ -3,7 +3,8 @@
 ``expand(job_path) -> Plan`` reads the job file and its optional ``[campaign]`` section
 (docs/campaigns.md) and checks them against the model; nothing is written. A plan has
 
-- ``variants``: the cartesian product of the varied keys (``v00``, ``v01``, ...);
+- ``variants``: the cartesian product of the varied keys, linked keys (``zip``) taking their
+  values together (``v00``, ``v01``, ...);
 - ``chains``: one per variant (and per replicate in ``mode = chains``), each a model folder
   ``<campaign folder>/<variant>[/r<k>]`` whose versions 000, 001, ... follow one another. A job
   file without ``[campaign]`` is one chain in the job file's own folder, run as ``mbds job``
@@ -30,7 +31,6 @@ task after a failed one of its chain, never started; other chains go on.
 
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -39,7 +39,7 @@ import numpy as np
 
 from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, Ledger
 from mbds.campaign.section import ENSEMBLE, CampaignSection, parse_campaign
-from mbds.campaign.variants import Variant, check_world_combinations, product
+from mbds.campaign.variants import Variant, check_world_combinations, product, variant_count
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, replicate_name, version_name
 from mbds.io.job import JobFile, read_checked_job
@@ -138,8 +138,8 @@ def expand(job_path: str | Path) -> Plan:
     _check_consecutive(job)
     folder = job.path.parent / campaign.folder
     _check_size(job, campaign)
-    check_world_combinations(files, campaign.parameters, job.path)
-    variants = product(campaign.parameters)
+    check_world_combinations(files, campaign.parameters, job.path, campaign.links)
+    variants = product(campaign.parameters, campaign.links)
     n, base = campaign.replicates, str(folder)
     if campaign.mode == ENSEMBLE:
         chains = [Chain(v.id, f"{base}/{v.id}", v, None, 0) for v in variants]
@@ -178,7 +178,7 @@ def ready_tasks(plan: Plan, ledger: Ledger) -> list[Task]:
 
 def plan_size(job: JobFile, campaign: CampaignSection) -> tuple[int, int, int]:
     """(tasks, variants, tasks per variant) of the plan, counted without making it."""
-    variants = math.prod(len(p.values) for p in campaign.parameters)
+    variants = variant_count(campaign.parameters, campaign.links)
     versions = len(job.versions)
     runs = versions * campaign.replicates
     wears = versions * campaign.replicates if job.settings.create_next_version_at_end else 0

@@ -1,5 +1,6 @@
 """Variants of a campaign: ``[campaign]`` keys that list values for a constant, a world setting
-or a contact law; their cartesian product; and the model files of one variant.
+or a contact law; their cartesian product (keys linked by ``zip`` vary together); and the model
+files of one variant.
 
 Keys (docs/campaigns.md): ``c'name`` (a constant of the ``.cns`` file), ``world.<key>`` (a
 number, flag or expression key of the world file's ``[main]``) and ``contact.<section>.<key>``
@@ -14,6 +15,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import itertools
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -107,12 +109,34 @@ def parse_parameter(key: str, text: str, line: int | None, files: ModelFiles, jo
     return Parameter(key, CONSTANT, "", name, values, texts, line)
 
 
-def product(parameters: tuple[Parameter, ...]) -> list[Variant]:
-    """Every combination of the parameters' values, the last key varying fastest; one variant
-    (with nothing changed) when there are no parameters."""
-    combos = list(itertools.product(*(range(len(p.values)) for p in parameters)))
+def axes(parameters: tuple[Parameter, ...], links: tuple[tuple[int, ...], ...] = ()) -> list[tuple[int, ...]]:
+    """The independent axes of the variants: each linked group of parameter indices (they take
+    their k-th values together), and each other parameter alone; in the order of their first key."""
+    linked = {i for group in links for i in group}
+    found = [tuple(group) for group in links] + [(i,) for i in range(len(parameters)) if i not in linked]
+    return sorted(found, key=min)
+
+
+def variant_count(parameters: tuple[Parameter, ...], links: tuple[tuple[int, ...], ...] = ()) -> int:
+    """How many variants :func:`product` makes, counted without making them."""
+    return math.prod(len(parameters[axis[0]].values) for axis in axes(parameters, links))
+
+
+def product(parameters: tuple[Parameter, ...], links: tuple[tuple[int, ...], ...] = ()) -> list[Variant]:
+    """Every combination of the parameters' values, the last key varying fastest; the keys of
+    a linked group (``links``, groups of parameter indices) take their k-th values together. One
+    variant (with nothing changed) when there are no parameters."""
+    order = axes(parameters, links)
+    combos = list(itertools.product(*(range(len(parameters[axis[0]].values)) for axis in order)))
     width = max(2, len(str(len(combos) - 1)))
-    return [Variant(f"v{i:0{width}d}", i, parameters, picks) for i, picks in enumerate(combos)]
+    variants = []
+    for index, combo in enumerate(combos):
+        picks = [0] * len(parameters)
+        for axis, k in zip(order, combo):
+            for i in axis:
+                picks[i] = k
+        variants.append(Variant(f"v{index:0{width}d}", index, parameters, tuple(picks)))
+    return variants
 
 
 def variant_files(files: ModelFiles, variant: Variant) -> tuple[ModelFiles, dict[str, str]]:
@@ -139,13 +163,15 @@ def variant_files(files: ModelFiles, variant: Variant) -> tuple[ModelFiles, dict
     return changed, texts
 
 
-def check_world_combinations(files: ModelFiles, parameters: tuple[Parameter, ...], job_path: Path) -> None:
-    """Every combination of the varied world keys passes the world file's checks
-    (minimumTimestep <= maximumTimestep, ...); see :func:`check_world`."""
-    world = tuple(p for p in parameters if p.kind == WORLD)
-    if world:
-        for variant in product(world):
-            check_world(files, variant, job_path)
+def check_world_combinations(files: ModelFiles, parameters: tuple[Parameter, ...], job_path: Path,
+                             links: tuple[tuple[int, ...], ...] = ()) -> None:
+    """Every combination of the varied world keys that a variant has passes the world file's
+    checks (minimumTimestep <= maximumTimestep, ...); see :func:`check_world`."""
+    world = [i for i, p in enumerate(parameters) if p.kind == WORLD]
+    local = {i: k for k, i in enumerate(world)}
+    world_links = tuple(g for g in (tuple(local[i] for i in group if i in local) for group in links) if len(g) > 1)
+    for variant in product(tuple(parameters[i] for i in world), world_links) if world else ():
+        check_world(files, variant, job_path)
 
 
 def check_world(files: ModelFiles, variant: Variant, job_path: Path) -> None:

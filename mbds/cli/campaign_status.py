@@ -63,7 +63,8 @@ def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
                       + (f" ({', '.join(same[:8])}{', ...' if len(same) > 8 else ''}): the lexicographic "
                          "randomisation decided no pivot there" if same else ""), highlight=False)
     for job in ledger.submissions:
-        console.print(f"Slurm job {job['job_id']} submitted {job['time']}", highlight=False)
+        what = f"requeued (requeue {job['requeue']})" if "requeue" in job else "submitted"
+        console.print(f"Slurm job {job['job_id']} {what} {job['time']}", highlight=False)
 
 
 def _more(console: Console, count: int, what: str) -> None:

@@ -144,7 +144,7 @@ def atomic_path(path: str | Path):
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     except OSError as exc:
-        raise ModelError(f"cannot write here: {exc.strerror}", path) from None
+        raise ModelError(f"cannot write here: {exc.strerror or exc}", path) from None
     os.close(fd)
     try:
         yield Path(tmp)
@@ -152,7 +152,7 @@ def atomic_path(path: str | Path):
         os.replace(tmp, path)
     except OSError as exc:
         Path(tmp).unlink(missing_ok=True)
-        raise ModelError(f"cannot write the file: {exc.strerror}", path) from None
+        raise ModelError(f"cannot write the file: {exc.strerror or exc}", path) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
