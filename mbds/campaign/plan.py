@@ -34,6 +34,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -66,14 +67,14 @@ class Chain:
         return Path(self.place)
 
 
-@dataclass(frozen=True)
-class Task:
+class Task(NamedTuple):
     """One step of a chain (see the module docstring for ``kind``). ``folder``: the folder the
     task writes (prepare: the chain's model folder; run: the run folder; wear: version N);
     ``depends_on``: ids of the tasks that must be done first; ``options``: of a run;
     ``inputs``: run folders whose losses a wear task averages (empty: ``folder``'s own run);
     ``source``: the world file a prepare task copies the model from. ``place`` is the folder
-    as given (text or path), made a path when asked."""
+    as given (text or path), made a path when asked. A named tuple: a plan of 10^5 tasks is
+    made in a fraction of a second."""
 
     id: str
     kind: str

@@ -28,8 +28,6 @@ from mbds.io.ini import Entry, Located, Section, check_rules, read_settings, spl
 from mbds.io.text import QUOTES, parse_number
 from mbds.io.world import RULES as WORLD_RULES
 from mbds.io.world import WorldSettings, format_world, parse_world
-from mbds.model.checks import check_law_value
-from mbds.model.load import break_time
 
 CONSTANT, WORLD, CONTACT = "constant", "world", "contact"
 _VARIED_KINDS = ("number", "flag", "expression")  # settings kinds a variant may change
@@ -100,6 +98,8 @@ def parse_parameter(key: str, text: str, line: int | None, files: ModelFiles, jo
             if name == "initial_temperature":
                 continue
             with _at(f"'{key}' value '{item}'", job_path, line):
+                from mbds.model.checks import check_law_value  # sympy: imported only when a law is varied
+
                 check_law_value(name, value, files, temperature, job_path)
         return Parameter(key, CONTACT, section, name, values, texts, line)
     name = key[2:].strip()
@@ -235,6 +235,8 @@ def _check_world_value(files: ModelFiles, name: str, value, what: str, job_path:
     """One varied world value in its range (``breakTime``: a positive time)."""
     with _at(what, job_path, line):
         if name == "break_time":
+            from mbds.model.load import break_time  # sympy: imported only when breakTime is varied
+
             world = dataclasses.replace(files.world, settings=dataclasses.replace(files.world.settings, break_time=value))
             break_time(dataclasses.replace(files, world=world), job_path)
         elif name in WORLD_RULES:
