@@ -18,7 +18,7 @@ HOSTILE = [
     "a\\", "--x", "a=b", "$HOME", "a&&id", "*", "a\tb", "",
 ]
 OPTIONS = ["--job-name", "--account", "--partition", "--time", "--ntasks", "--signal-seconds", "--nodes",
-           "--mem-per-cpu", "--mpi"]
+           "--mem-per-cpu", "--mpi", "--preamble"]
 NAMES = ("--job-name", "--account", "--partition", "--mpi")
 MARK = "PLACEHOLDER"
 
