@@ -92,3 +92,21 @@ def test_mutated_dapbc_in_files(mutation):
         except ModelError as error:
             assert error.file is not None and Path(error.file).parent == folder, str(error)
         assert time.perf_counter() - started < SECONDS
+
+
+@pytest.mark.parametrize(("code", "stderr", "exception"), [
+    (2, "error: no file named here\n", None),
+    (2, "error: /elsewhere/2mass.wld:3: outside the model\n", None),
+    (1, "", None),
+    (1, "", ValueError("an uncaught error")),
+])
+def test_the_checks_refuse_what_they_must(tmp_path, code, stderr, exception):
+    class Result:
+        exit_code, exception = code, None
+
+    Result.stderr, Result.exception = stderr, exception
+    with pytest.raises((AssertionError, ValueError)):
+        assert_clean(Result, tmp_path, time.perf_counter())
+    if code == 2:
+        Result.stderr = f"error: {tmp_path / '2mass.wld'}:3: a located error\n"
+        assert_clean(Result, tmp_path, time.perf_counter())
