@@ -2,6 +2,7 @@
 on PATH, whose job id lands in the ledger."""
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -88,8 +89,12 @@ def test_scripts_are_valid_shell(tmp_path):
 
 def test_a_wheel_ships_the_template_and_submit_works_from_it(tmp_path):
     """Built and installed as a user would (not editable), `submit --dry-run` finds its template."""
+    source = tmp_path / "source"  # the package's sources alone: the build leaves nothing in the repository
+    shutil.copytree(ROOT / "mbds", source / "mbds", ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, source / name)
     built = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
-                            "-w", str(tmp_path / "wheel"), str(ROOT)], capture_output=True, text=True)
+                            "-w", str(tmp_path / "wheel"), str(source)], capture_output=True, text=True)
     assert built.returncode == 0, built.stderr
     (wheel,) = (tmp_path / "wheel").glob("mbds-*.whl")
     site = tmp_path / "site"
