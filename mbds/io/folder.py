@@ -31,7 +31,7 @@ from mbds.io.equations import (
 from mbds.io.shape import ShapeFile, format_shape, parse_shape
 from mbds.io.text import read_text, write_atomic
 from mbds.io.watches import WatchesFile, format_watches, parse_watches
-from mbds.io.world import WorldFile, format_world, parse_world
+from mbds.io.world import WorldFile, WorldSettings, format_world, parse_world
 
 
 @dataclass
@@ -86,7 +86,9 @@ def read_model_files(path: str | Path) -> ModelFiles:
     """Read a model from a folder or a ``.wld`` file; optional files may be absent.
 
     Optional: ``.dc`` (no dependent coordinates), ``.cns`` (no constants), ``.me`` (energy not
-    tracked), ``.cop`` (no contacts), ``.wtc`` (no watches). The others are required.
+    tracked), ``.cop`` (no contacts), ``.wtc`` (no watches), when they have their default names
+    (``current.dc``, ...); a file named otherwise, or a required one, that is missing is an error
+    at the world file's line that names it.
     """
     world_path = find_world(path)
     world = parse_world(read_text(world_path), world_path)
@@ -94,11 +96,12 @@ def read_model_files(path: str | Path) -> ModelFiles:
     missing: list[str] = []
 
     def load(name: str, parser, empty, **kwargs):
-        """The file of world key ``name`` parsed; ``empty`` when it is optional, absent and not
-        named in the world file."""
-        file = world.resolve(getattr(world.settings, name))
-        given = world.main is not None and world.line(name) != world.main.line
-        if empty is not None and not file.exists() and not given:
+        """The file of world key ``name`` parsed; ``empty`` when it is optional, absent and
+        has its default name (``current.dc``, ...): a file named otherwise must be there."""
+        value = getattr(world.settings, name)
+        file = world.resolve(value)
+        default = WorldSettings.__dataclass_fields__[name].default
+        if empty is not None and not file.exists() and value.strip().lower() == default.lower():
             missing.append(file.name)
             return empty
         return parser(referred_text(file, world_path, world.line(name)), file, **kwargs)
