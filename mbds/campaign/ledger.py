@@ -127,9 +127,10 @@ class Ledger:
             raise ModelError(f"[campaign] differs from the campaign begun in {self.folder} ({', '.join(changed)}); "
                              "use another 'folder = ...' or remove that folder", plan.job.path, plan.line)
 
-    def record_submission(self, job_id: str, script: str | Path) -> None:
-        """Keep a Slurm job submitted for this campaign, and save."""
-        self.submissions.append({"job_id": job_id, "script": str(script), "time": utc_now()})
+    def record_submission(self, job_id: str, script: str | Path, **info) -> None:
+        """Keep a Slurm job submitted for this campaign (or requeued: ``requeue`` = its count),
+        and save."""
+        self.submissions.append({"job_id": job_id, "script": str(script), "time": utc_now(), **info})
         self.save()
 
     def save(self) -> None:

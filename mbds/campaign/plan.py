@@ -3,7 +3,8 @@
 ``expand(job_path) -> Plan`` reads the job file and its optional ``[campaign]`` section
 (docs/campaigns.md) and checks them against the model; nothing is written. A plan has
 
-- ``variants``: the cartesian product of the varied keys (``v00``, ``v01``, ...);
+- ``variants``: the cartesian product of the varied keys, linked keys (``zip``) taking their
+  values together (``v00``, ``v01``, ...);
 - ``chains``: one per variant (and per replicate in ``mode = chains``), each a model folder
   ``<campaign folder>/<variant>[/r<k>]`` whose versions 000, 001, ... follow one another. A job
   file without ``[campaign]`` is one chain in the job file's own folder, run as ``mbds job``
@@ -33,17 +34,17 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, Ledger
 from mbds.campaign.section import ENSEMBLE, CampaignSection, parse_campaign
-from mbds.campaign.variants import Variant, check_world, product
+from mbds.campaign.variants import Variant, check_world_combinations, product, variant_count
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, replicate_name, version_name
-from mbds.io.job import JobFile
-from mbds.simulation.job import read_checked_job
-from mbds.simulation.version_run import RunOptions
+from mbds.io.job import JobFile, read_checked_job
+from mbds.simulation.options import RunOptions
 
 PREPARE, RUN, WEAR = "prepare", "run", "wear"
 
@@ -52,22 +53,28 @@ PREPARE, RUN, WEAR = "prepare", "run", "wear"
 class Chain:
     """Versions that follow one another in the model folder ``folder``: of ``variant`` (None
     for a job without ``[campaign]``), of one ``replicate`` in ``mode = chains`` (else None),
-    run with ``seed`` (each replicate its own in ensemble mode)."""
+    run with ``seed`` (each replicate its own in ensemble mode). The folder is kept as given
+    (text or path) and made a path when asked, so that a plan of 10^5 tasks is made quickly."""
 
     id: str
-    folder: Path
+    place: str | Path
     variant: Variant | None
     replicate: int | None
     seed: int
 
+    @property
+    def folder(self) -> Path:
+        return Path(self.place)
 
-@dataclass(frozen=True)
-class Task:
+
+class Task(NamedTuple):
     """One step of a chain (see the module docstring for ``kind``). ``folder``: the folder the
     task writes (prepare: the chain's model folder; run: the run folder; wear: version N);
     ``depends_on``: ids of the tasks that must be done first; ``options``: of a run;
     ``inputs``: run folders whose losses a wear task averages (empty: ``folder``'s own run);
-    ``source``: the world file a prepare task copies the model from."""
+    ``source``: the world file a prepare task copies the model from. ``place`` is the folder
+    as given (text or path), made a path when asked. A named tuple: a plan of 10^5 tasks is
+    made in a fraction of a second."""
 
     id: str
     kind: str
@@ -75,12 +82,16 @@ class Task:
     variant: Variant | None
     replicate: int | None
     version: int
-    folder: Path
+    place: str | Path
     seed: int
     depends_on: tuple[str, ...] = ()
     options: RunOptions | None = None
     inputs: tuple[Path, ...] = ()
     source: Path | None = None
+
+    @property
+    def folder(self) -> Path:
+        return Path(self.place)
 
 
 @dataclass
@@ -127,16 +138,16 @@ def expand(job_path: str | Path) -> Plan:
         return Plan(job, job.path.parent / "campaign", None, [], chains, _tasks(job, chains, None))
     _check_consecutive(job)
     folder = job.path.parent / campaign.folder
-    variants = product(campaign.parameters)
-    for variant in variants:
-        check_world(files, variant, job.path)
-    n = campaign.replicates
+    _check_size(job, campaign)
+    check_world_combinations(files, campaign.parameters, job.path, campaign.links)
+    variants = product(campaign.parameters, campaign.links)
+    n, base = campaign.replicates, str(folder)
     if campaign.mode == ENSEMBLE:
-        chains = [Chain(v.id, folder / v.id, v, None, 0) for v in variants]
+        chains = [Chain(v.id, f"{base}/{v.id}", v, None, 0) for v in variants]
     else:
         chains = [
             Chain(v.id if n == 1 else f"{v.id}/{replicate_name(r)}",
-                  folder / v.id if n == 1 else folder / v.id / replicate_name(r),
+                  f"{base}/{v.id}" if n == 1 else f"{base}/{v.id}/{replicate_name(r)}",
                   v, r, replicate_seed(campaign.seed, v.index, r))
             for v in variants for r in range(n)
         ]
@@ -166,6 +177,28 @@ def ready_tasks(plan: Plan, ledger: Ledger) -> list[Task]:
     return [t for t in plan.tasks if states[t.id] == PENDING and all(states[d] == DONE for d in t.depends_on)]
 
 
+def plan_size(job: JobFile, campaign: CampaignSection) -> tuple[int, int, int]:
+    """(tasks, variants, tasks per variant) of the plan, counted without making it."""
+    variants = variant_count(campaign.parameters, campaign.links)
+    versions = len(job.versions)
+    runs = versions * campaign.replicates
+    wears = versions * campaign.replicates if job.settings.create_next_version_at_end else 0
+    if campaign.mode == ENSEMBLE:
+        per_variant = (job.versions[0] == 0) + runs + wears // campaign.replicates
+    else:
+        per_variant = campaign.replicates * (job.versions[0] == 0) + runs + wears
+    return variants * per_variant, variants, per_variant
+
+
+def _check_size(job: JobFile, campaign: CampaignSection) -> None:
+    """ModelError, before anything is made, when the plan has more than ``maxTasks`` tasks."""
+    tasks, variants, per_variant = plan_size(job, campaign)
+    if tasks > campaign.max_tasks:
+        raise ModelError(f"the plan has {tasks:,} tasks ({variants:,} variants x {per_variant:,} tasks each), "
+                         f"more than maxTasks = {campaign.max_tasks:,}; vary fewer values, or raise maxTasks "
+                         "in [campaign] if you mean it", job.path, campaign.line)
+
+
 def _check_consecutive(job: JobFile) -> None:
     """A campaign starts its chains at 000, each later version made by the one before it."""
     versions = job.versions
@@ -179,18 +212,20 @@ def _tasks(job: JobFile, chains: list[Chain], campaign: CampaignSection | None) 
     tasks: list[Task] = []
     wear = job.settings.create_next_version_at_end
     ensemble = campaign is not None and campaign.mode == ENSEMBLE
+    source = job.world_path()
     for chain in chains:
         made_by: dict[int, str] = {}  # version -> id of the task that makes its folder
+        options = RunOptions(seed=chain.seed, job=job.settings)
         if job.versions[0] == 0:
             prepare = Task(f"{chain.id}/prepare", PREPARE, chain.id, chain.variant, chain.replicate, 0,
-                           chain.folder, chain.seed, source=job.world_path())
+                           chain.place, chain.seed, source=source)
             tasks.append(prepare)
             made_by[0] = prepare.id
         for number in job.versions:
-            version = chain.folder / version_name(number)
+            version = f"{chain.place}/{version_name(number)}"
             before = (made_by[number],) if number in made_by else ()
             replicates = range(campaign.replicates) if ensemble else [None]
-            runs = [_run(job, chain, number, version, before, campaign, r) for r in replicates]
+            runs = [_run(job, chain, number, version, before, campaign, r, options) for r in replicates]
             tasks += runs
             if wear:
                 task = Task(f"{chain.id}/{version_name(number)}/wear", WEAR, chain.id, chain.variant,
@@ -201,13 +236,14 @@ def _tasks(job: JobFile, chains: list[Chain], campaign: CampaignSection | None) 
     return tasks
 
 
-def _run(job: JobFile, chain: Chain, number: int, version: Path, before: tuple[str, ...],
-         campaign: CampaignSection | None, replicate: int | None) -> Task:
-    """The run of version ``number`` of ``chain`` (of one ``replicate`` in ensemble mode)."""
+def _run(job: JobFile, chain: Chain, number: int, version: str, before: tuple[str, ...],
+         campaign: CampaignSection | None, replicate: int | None, options: RunOptions) -> Task:
+    """The run of version ``number`` of ``chain`` (of one ``replicate`` in ensemble mode);
+    ``options``: those of the chain's runs."""
     name = version_name(number)
     if replicate is None:
         return Task(f"{chain.id}/{name}/run", RUN, chain.id, chain.variant, chain.replicate, number, version,
-                    chain.seed, before, RunOptions(seed=chain.seed, job=job.settings))
+                    chain.seed, before, options)
     seed = replicate_seed(campaign.seed, chain.variant.index, replicate)
     return Task(f"{chain.id}/{name}/{replicate_name(replicate)}/run", RUN, chain.id, chain.variant, replicate,
-                number, version / replicate_name(replicate), seed, before, RunOptions(seed=seed, job=job.settings))
+                number, f"{version}/{replicate_name(replicate)}", seed, before, RunOptions(seed=seed, job=job.settings))

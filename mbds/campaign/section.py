@@ -3,22 +3,28 @@ seed, replicates and mode, and the keys whose values make the variants."""
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
+from pathlib import Path, PurePosixPath
 
 from mbds.campaign.variants import Parameter, is_parameter_key, parse_parameter
 from mbds.errors import ModelError
-from mbds.io.folder import ModelFiles
+from mbds.io.folder import ModelFiles, version_number
 from mbds.io.job import JobFile
 from mbds.io.text import parse_integer
 
 CHAINS, ENSEMBLE = "chains", "ensemble"
+MAX_TASKS = 10**6
+"""The most tasks a plan may have unless ``maxTasks`` in ``[campaign]`` says otherwise."""
 
 
 @dataclass(frozen=True)
 class CampaignSection:
     """``folder`` (relative to the job file), ``seed`` (of the replicates' seeds),
     ``replicates`` (runs per variant), ``mode`` (chains or ensemble), the varied
-    ``parameters``, and ``line``: the section's first line in the job file (for errors)."""
+    ``parameters``, ``line``: the section's first line in the job file (for errors), and
+    ``max_tasks``: the largest plan accepted; ``links``: groups of indices of ``parameters``
+    that take their k-th values together (``zip`` keys)."""
 
     folder: str = "campaign"
     seed: int = 0
@@ -26,6 +32,25 @@ class CampaignSection:
     mode: str = CHAINS
     parameters: tuple[Parameter, ...] = ()
     line: int | None = None
+    max_tasks: int = MAX_TASKS
+    links: tuple[tuple[int, ...], ...] = ()
+
+
+def _checked_folder(text: str, job_path, line: int | None) -> str:
+    """The ``folder`` value: a folder inside the job file's folder (not that folder itself, not
+    a version folder's name such as 000, no control characters)."""
+    relative = PurePosixPath(text.replace("\\", "/"))
+    if not text or relative.is_absolute() or re.search(r"[\x00-\x1f\x7f]", text):
+        raise ModelError("folder must be a folder name relative to the job file", job_path, line)
+    base = Path(job_path).resolve().parent if job_path else Path.cwd()
+    target = (base / text).resolve()
+    if target == base or not target.is_relative_to(base):
+        raise ModelError(f"folder '{text}' is not inside the job file's folder {base}", job_path, line)
+    first = target.relative_to(base).parts[0]
+    if version_number(first) is not None:
+        raise ModelError(f"folder '{text}' would mix the campaign with the model's version folders "
+                         f"({first}); give it another name", job_path, line)
+    return text
 
 
 def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
@@ -38,6 +63,7 @@ def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
     values: dict = {"line": entries[0][1].line if entries else job.line("jobs")}
     parameters: list[Parameter] = []
     seen: dict = {}  # key (or what a varied key changes) -> line
+    zips: list = []  # (key, Located list of the varied keys it links)
     for key, located in entries:
         text, line = located.text, located.line
         parameter = parse_parameter(key, text, line, files, path) if is_parameter_key(key) else None
@@ -57,11 +83,38 @@ def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
                 raise ModelError(f"mode must be '{CHAINS}' or '{ENSEMBLE}', not '{text}'", path, line)
             values["mode"] = text.lower()
         elif folded == "folder":
-            if not text or text.startswith("/"):
-                raise ModelError("folder must be a folder name relative to the job file", path, line)
-            values["folder"] = text
+            values["folder"] = _checked_folder(text, path, line)
+        elif folded.startswith("zip"):
+            zips.append((key, located))
+        elif folded == "maxtasks":
+            values["max_tasks"] = parse_integer(text, path, line)
+            if values["max_tasks"] < 1:
+                raise ModelError(f"{key} must be 1 or more", path, line)
         else:
             raise ModelError(
-                f"unknown key '{key}' in [campaign] (seed, replicates, mode, folder, c'name, world.<key>, "
+                f"unknown key '{key}' in [campaign] (seed, replicates, mode, folder, maxTasks, zip, c'name, world.<key>, "
                 "contact.<section>.<key>)", path, line)
-    return CampaignSection(parameters=tuple(parameters), **values)
+    links = tuple(_link(key, located, parameters, path) for key, located in zips)
+    linked = [i for group in links for i in group]
+    if len(set(linked)) != len(linked):
+        raise ModelError("a varied key is linked by two zip keys", path, zips[-1][1].line)
+    return CampaignSection(parameters=tuple(parameters), links=links, **values)
+
+
+def _link(key: str, located, parameters: list[Parameter], path) -> tuple[int, ...]:
+    """The indices of the varied keys a ``zip`` key names; they must list as many values each."""
+    names = [n.strip() for n in located.text.split(",")]
+    index = {p.key.lower(): i for i, p in enumerate(parameters)}
+    if len(names) < 2 or not all(names):
+        raise ModelError(f"{key} needs two varied keys or more, separated by commas", path, located.line)
+    missing = [n for n in names if n.lower() not in index]
+    if missing:
+        raise ModelError(f"{key}: '{missing[0]}' is not a varied key of this [campaign] section", path, located.line)
+    group = tuple(index[n.lower()] for n in names)
+    if len(set(group)) != len(group):
+        raise ModelError(f"{key} names a key twice", path, located.line)
+    counts = {parameters[i].key: len(parameters[i].values) for i in group}
+    if len(set(counts.values())) != 1:
+        listed = ", ".join(f"{k} {n}" for k, n in counts.items())
+        raise ModelError(f"{key}: linked keys must list as many values each ({listed})", path, located.line)
+    return group

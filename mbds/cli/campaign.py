@@ -48,12 +48,20 @@ def submit(
     job_name: str = typer.Option("", "--job-name", help="Slurm job name; default: mbds-<job file name>."),
     signal_seconds: int = typer.Option(300, "--signal-seconds", min=1, max=65535,
                                        help="Tell the campaign to stop this many s before the time limit."),
+    nodes: str = typer.Option("", "--nodes", help="Slurm nodes: a count or min-max; default: Slurm's choice."),
+    mem_per_cpu: str = typer.Option("", "--mem-per-cpu", help="Memory per rank, e.g. 2G; default: the partition's."),
+    mpi: str = typer.Option("", "--mpi", help="srun's --mpi plugin (pmix, pmi2, ...); default: the cluster's."),
+    preamble: Path = typer.Option(None, "--preamble", help="A file of shell lines run before the campaign (module load ...)."),
+    requeue: bool = typer.Option(True, "--requeue/--no-requeue",
+                                 help="Requeue the job when its time limit stops the campaign with tasks left."),
+    max_requeues: int = typer.Option(5, "--max-requeues", min=0, help="Requeue at most this many times."),
+    force: bool = typer.Option(False, "--force", help="Submit even when every task of the campaign is done."),
     dry_run: bool = typer.Option(False, "--dry-run", help="Print the batch script; submit nothing."),
     debug: bool = DEBUG,
 ) -> None:
-    """Write the campaign's Slurm batch script (workflows/slurm.sbatch) and submit it with sbatch."""
+    """Write the campaign's Slurm batch script (mbds/campaign/slurm.sbatch) and submit it with sbatch."""
     from mbds.campaign.ledger import Ledger
-    from mbds.campaign.plan import expand
+    from mbds.campaign.plan import done_count, expand
     from mbds.campaign.slurm import SlurmOptions, render_script
     from mbds.campaign.slurm import submit as submit_script
 
@@ -61,11 +69,18 @@ def submit(
         raise typer.BadParameter("a campaign needs 2 ranks or more (one schedules)", param_hint="--ntasks")
     with reported_errors(debug):
         plan = expand(path)
-        script = render_script(plan, SlurmOptions(ntasks, time, account, partition, job_name, signal_seconds))
+        options = SlurmOptions(ntasks, time, account, partition, job_name, signal_seconds, nodes, mem_per_cpu, mpi,
+                               preamble, max_requeues if requeue else None)
+        script = render_script(plan, options)
         if dry_run:
             sys.stdout.write(script)
             return
         ledger = Ledger.read(plan.folder)
+        ledger.check(plan)
+        if not force and done_count(plan, ledger) == len(plan.tasks):
+            print("warning: every task of the campaign is done; nothing submitted (--force submits anyway)",
+                  file=sys.stderr)
+            return
         ledger.bind(plan)
         job_id = submit_script(plan, script, ledger)
         print(f"submitted Slurm job {job_id}; follow it with: mbds-campaign status {path}")
@@ -87,6 +102,8 @@ def status(path: Path = JOB, debug: bool = DEBUG) -> None:
 
 
 EXIT_FAILED, EXIT_STOPPED = 1, 3
+PLAN_NOTICE = 300
+"""A plan of more tasks says its size before it runs."""
 
 
 @app.command()
@@ -161,10 +178,14 @@ def _schedule(path: Path, workers: int, ranks, private_cache: bool) -> int:
     exit code."""
     from mbds.campaign.ledger import Ledger
     from mbds.campaign.plan import done_count, expand
+    from mbds.campaign.requeue import requeue
     from mbds.io.lock import folder_lock
 
     plan = expand(path)
     Ledger.read(plan.folder).check(plan)
+    if len(plan.tasks) > PLAN_NOTICE:
+        print(f"plan: {len(plan.tasks):,} tasks in {len(plan.chains):,} chains of {max(len(plan.variants), 1):,} "
+              "variant(s)", file=sys.stderr)
     plan.folder.mkdir(parents=True, exist_ok=True)
     with folder_lock(plan.folder, "mbds-campaign run"):
         outcome = _run_locked(plan, workers, ranks, private_cache)
@@ -172,6 +193,10 @@ def _schedule(path: Path, workers: int, ranks, private_cache: bool) -> int:
           + (f", {len(outcome.stopped)} stopped" if outcome.stopped else ""), file=sys.stderr)
     if outcome.interrupted:
         print(f"stopped; run it again to resume: mbds-campaign run {path}", file=sys.stderr)
+        if done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks):
+            said = requeue(Ledger.read(plan.folder))
+            if said:
+                print(said, file=sys.stderr)
         return EXIT_STOPPED
     return EXIT_FAILED if outcome.failed or done_count(plan, Ledger.read(plan.folder)) < len(plan.tasks) else 0
 

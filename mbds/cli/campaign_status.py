@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections import Counter
+from collections import Counter, defaultdict
 
 from rich import box
 from rich.console import Console
@@ -17,9 +17,14 @@ from mbds.io.folder import version_name
 STYLES = {DONE: "green", RUNNING: "cyan", FAILED: "bold red", BLOCKED: "yellow", PENDING: "dim"}
 
 
+ROWS_SHOWN = 100
+"""The most variants, chains and failures listed one per line; the summary counts them all."""
+
+
 def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
     """Variants, one row per chain with the state of each version (its tasks taken together:
-    ``k/n`` when k of its n tasks are done), the failures and a summary."""
+    ``k/n`` when k of its n tasks are done), the failures and a summary; long lists are cut at
+    :data:`ROWS_SHOWN` lines with a count of the rest."""
     states = task_states(plan, ledger)
     table_box = box.SIMPLE if console.is_terminal else None
     if plan.variants and plan.variants[0].parameters:
@@ -27,24 +32,28 @@ def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
         variants.add_column("variant")
         for key in plan.variants[0].values:
             variants.add_column(escape(key))
-        for v in plan.variants:
+        for v in plan.variants[:ROWS_SHOWN]:
             variants.add_row(v.id, *map(escape, v.values.values()))
         console.print(variants)
+        _more(console, len(plan.variants), "variants")
     versions = plan.job.versions
     console.print(f"campaign of {escape(plan.job.path.name)} in {escape(str(plan.folder))}", highlight=False)
+    by_cell: dict[tuple[str, int], list[str]] = defaultdict(list)
+    for task in plan.tasks:
+        by_cell[task.chain, task.version].append(states[task.id])
     chains = Table(box=table_box)
     chains.add_column("chain")
     for number in versions:
         chains.add_column(version_name(number))
-    for chain in plan.chains:
-        cells = [_version_cell([states[t.id] for t in plan.tasks if t.chain == chain.id and t.version == n])
-                 for n in versions]
-        chains.add_row(chain.id, *cells)
+    for chain in plan.chains[:ROWS_SHOWN]:
+        chains.add_row(chain.id, *(_version_cell(by_cell[chain.id, n]) for n in versions))
     console.print(chains)
-    for task in plan.tasks:
-        if states[task.id] == FAILED:
-            reason = ledger.entry(task.id).get("reason", "")
-            console.print(f"[red]failed[/red] {task.id}: {escape(reason)}", highlight=False)
+    _more(console, len(plan.chains), "chains")
+    failed = [task for task in plan.tasks if states[task.id] == FAILED]
+    for task in failed[:ROWS_SHOWN]:
+        reason = ledger.entry(task.id).get("reason", "")
+        console.print(f"[red]failed[/red] {task.id}: {escape(reason)}", highlight=False)
+    _more(console, len(failed), "failed tasks")
     counts = Counter(states.values())
     parts = [f"{counts[s]} {s}" for s in (RUNNING, FAILED, BLOCKED, PENDING) if counts[s]]
     console.print(f"{counts[DONE]} of {len(states)} tasks done" + "".join(f", {p}" for p in parts), highlight=False)
@@ -54,7 +63,14 @@ def print_status(plan: Plan, ledger: Ledger, console: Console) -> None:
                       + (f" ({', '.join(same[:8])}{', ...' if len(same) > 8 else ''}): the lexicographic "
                          "randomisation decided no pivot there" if same else ""), highlight=False)
     for job in ledger.submissions:
-        console.print(f"Slurm job {job['job_id']} submitted {job['time']}", highlight=False)
+        what = f"requeued (requeue {job['requeue']})" if "requeue" in job else "submitted"
+        console.print(f"Slurm job {job['job_id']} {what} {job['time']}", highlight=False)
+
+
+def _more(console: Console, count: int, what: str) -> None:
+    """A line saying how many of ``count`` items were left out of a list cut at ROWS_SHOWN."""
+    if count > ROWS_SHOWN:
+        console.print(f"... and {count - ROWS_SHOWN} more {what} (first {ROWS_SHOWN} shown)", highlight=False)
 
 
 def _version_cell(states: list[str]) -> str:

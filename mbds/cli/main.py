@@ -34,21 +34,28 @@ def main(
 
 @app.command()
 def check(
-    paths: list[Path] = typer.Argument(..., help="Model folders or .wld world files."),
+    paths: list[Path] = typer.Argument(..., help="Model folders, .wld world files or .job job files."),
     compile: bool = typer.Option(True, "--compile/--no-compile", help="Also compile the model's functions."),
     version: int = typer.Option(0, "--model-version", help="Version whose [body:k] watch sections apply."),
     debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
 ) -> None:
-    """Validate models and print a summary of each; exit code 2 on bad input."""
+    """Validate models and print a summary of each; a model folder's job files (and their
+    [campaign] sections) are checked too; exit code 2 on bad input."""
+    from mbds.campaign.plan import expand
     from mbds.cli.summary import print_summary
     from mbds.model.load import load_model
 
     console = _console()
     with reported_errors(debug):
         for path in paths:
-            model = load_model(path, version=version, compile=compile)
+            is_job = path.suffix.lower() == ".job"
+            model = load_model(expand(path).job.world_path() if is_job else path, version=version, compile=compile)
             print_summary(model, console)
             console.print(f"[green]ok[/green] {model.world_path}")
+            for job in [path] if is_job else sorted(path.glob("*.job")) if path.is_dir() else []:
+                plan = expand(job)
+                console.print(f"[green]ok[/green] {job}: {len(plan.tasks)} tasks in {len(plan.chains)} chain(s)",
+                              highlight=False)
 
 
 @app.command()
@@ -57,6 +64,7 @@ def run(
     break_time: float = typer.Option(None, "--break-time", help="Length of the run (s); default: breakTime."),
     start_from: int = typer.Option(None, "--from", help="Start where this version's run ended (e.g. 000)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the randomized lexicographic tolerances."),
+    force: bool = typer.Option(False, "--force", help="Replace a complete run, or version 000's copies of model files that changed."),
     debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
 ) -> None:
     """Run one version of a model and write its outputs into the version folder.
@@ -71,7 +79,7 @@ def run(
         raise typer.BadParameter("must be a positive time (s)", param_hint="--break-time")
     console = _console()
     with reported_errors(debug):
-        code = run_command(path, RunOptions(break_time, seed, start_from), console)
+        code = run_command(path, RunOptions(break_time, seed, start_from), console, force)
     raise typer.Exit(code)
 
 

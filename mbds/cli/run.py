@@ -12,7 +12,10 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
+from mbds.data.history import FILE_NAME as HISTORY
+from mbds.data.history import read_attributes
 from mbds.data.record import RunRecord
+from mbds.errors import ModelError
 from mbds.io.lock import folder_lock
 from mbds.simulation.version_run import RunOptions, run_version
 from mbds.simulation.versions import run_folder
@@ -22,9 +25,14 @@ EXIT_INTERRUPTED = 130
 OUTPUTS = "history.nc data.txt watches.txt log.txt"
 
 
-def run_command(path: Path, options: RunOptions, console: Console) -> int:
-    """Run the version that ``path`` names (see :func:`run_folder`); return the exit code."""
-    folder = run_folder(path, options.start_from)
+def run_command(path: Path, options: RunOptions, console: Console, force: bool = False) -> int:
+    """Run the version that ``path`` names (see :func:`run_folder`); return the exit code. A
+    version with a complete run, or whose copies differ from the model folder's files, is run
+    again only with ``force``."""
+    folder = run_folder(path, options.start_from, force)
+    history = folder / HISTORY
+    if not force and history.is_file() and read_attributes(history).get("complete"):
+        raise ModelError("has a complete run: run with --force to replace it (its outputs are overwritten)", folder)
     console.print(f"running {escape(str(folder))}", highlight=False)
     wall = time.perf_counter()
     with folder_lock(folder, "mbds run"), interrupt_flag() as interrupted, progress_bar(console) as bar:

@@ -3,6 +3,12 @@
 A module is stored as ``<cache dir>/mbds_model_<hash>.py`` where the hash is that of its text;
 numba keeps the machine code of its functions beside it (``__pycache__``), keyed on the file's
 modification time, so an existing file is never rewritten.
+
+Importing a module runs it, and numba's index files beside it are unpickled: a cache another user
+can write to would run that user's code. So the cache folder is created private (0700), and
+before use the folder and its ``__pycache__`` must belong to the user and be writable by no one
+else, and a module file must belong to the user; otherwise :class:`~mbds.errors.ModelError`
+says what to fix.
 """
 
 from __future__ import annotations
@@ -14,6 +20,8 @@ import sys
 import tempfile
 from pathlib import Path
 from types import ModuleType
+
+from mbds.errors import ModelError
 
 PREFIX = "mbds_model_"
 HASH_LENGTH = 20  # hexadecimal digits of sha256 kept in the file name
@@ -48,14 +56,17 @@ def store(source: str, cache_dir: Path) -> Path:
     """
     data = source.encode("utf-8")
     path = cache_dir / f"{PREFIX}{source_hash(source)}.py"
+    cache_dir.mkdir(mode=0o700, parents=True, exist_ok=True)
+    (cache_dir / "__pycache__").mkdir(mode=0o700, exist_ok=True)  # before numba makes it with the umask's mode
+    check_private(cache_dir)
     if path.is_file() and path.read_bytes() == data:
+        check_owned(path)
         return path
-    cache_dir.mkdir(parents=True, exist_ok=True)
     descriptor, temporary = tempfile.mkstemp(dir=cache_dir, prefix=path.stem, suffix=".tmp")
     try:
         with os.fdopen(descriptor, "wb") as file:
             file.write(data)
-        os.chmod(temporary, 0o644)  # mkstemp makes it private; the cache may be shared by a group
+        os.chmod(temporary, 0o600)
         try:
             os.link(temporary, path)  # creates path only if it does not exist yet
         except FileExistsError:
@@ -66,6 +77,25 @@ def store(source: str, cache_dir: Path) -> Path:
     finally:
         Path(temporary).unlink(missing_ok=True)
     return path
+
+
+def check_private(folder: Path) -> None:
+    """``folder`` (and its ``__pycache__``, if there) belongs to this user and no one else may
+    write to it; ModelError otherwise (not checked where the system has no user ids)."""
+    for each in (folder, folder / "__pycache__"):
+        if not each.exists():
+            continue
+        check_owned(each)
+        if each.stat().st_mode & 0o022:
+            raise ModelError(f"the compiled-model cache is writable by other users, who could make mbds run their "
+                             f"code: chmod go-w {each}, or set MBDS_CACHE_DIR to a private folder", each)
+
+
+def check_owned(path: Path) -> None:
+    """``path`` belongs to this user; ModelError otherwise."""
+    if hasattr(os, "getuid") and path.stat().st_uid != os.getuid():
+        raise ModelError("belongs to another user: mbds does not run compiled models that others left in its "
+                         "cache; set MBDS_CACHE_DIR to a folder of your own", path)
 
 
 def load(path: Path) -> ModuleType:

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mbds.errors import ModelError, warn
-from mbds.io.ini import find_section, format_settings, parse_ini, read_settings, setting
+from mbds.io.ini import POSITIVE, check_rules, find_section, format_settings, parse_ini, read_settings, setting
 
 NOT_SET = None
 
@@ -63,6 +63,11 @@ class BodyFile:
     velocity: Pose = field(default_factory=Pose)
     path: Path | None = field(default=None, compare=False)
     name_line: int | None = field(default=None, compare=False)
+    lines: dict[str, int] = field(default_factory=dict, compare=False)  # [main] key (lower case) -> line
+
+
+MAIN_RULES = {name: POSITIVE for name in ("density", "thickness", "maximum_displacement_factor", "skin_thickness")}
+MASS_RULES = {name: POSITIVE for name in ("mass", "inertia_zz")}
 
 
 def parse_body(text: str, path: str | Path | None = None, separator: str = ".") -> BodyFile:
@@ -82,23 +87,18 @@ def parse_body(text: str, path: str | Path | None = None, separator: str = ".") 
         raise ModelError(f"body name '{main.name}' contains a quote, bracket, '-', ':', ',' or space", path, name_line)
     if main.shape_type.lower() != "extrusionsolid":
         raise ModelError(f"shapeType '{main.shape_type}' is not supported (use extrusionSolid)", path, main_section.line)
-    for key in ("density", "thickness", "maximum_displacement_factor", "skin_thickness"):
-        value = getattr(main, key)
-        if value is not None and value <= 0:
-            raise ModelError(f"{BodyMain.__dataclass_fields__[key].metadata['key']} must be positive", path, main_section.line)
+    check_rules(main, MAIN_RULES, main_section, path)
     mass_section = find_section(sections, "mass properties")
     mass = read_settings(MassProperties, mass_section, path, separator) if mass_section else None
     if mass is not None:
-        for key in ("mass", "inertia_zz"):
-            value = getattr(mass, key)
-            if value is not None and value <= 0:
-                raise ModelError(f"{MassProperties.__dataclass_fields__[key].metadata['key']} must be positive", path, mass_section.line)
+        check_rules(mass, MASS_RULES, mass_section, path)
     position = read_settings(Pose, find_section(sections, "startPosition"), path, separator)
     velocity = read_settings(Pose, find_section(sections, "startVelocity"), path, separator)
     for title, pose in (("startPosition", position), ("startVelocity", velocity)):
         if pose.z or pose.rx or pose.ry:
             warn(f"[{title}] z, Rx and Ry are not used by a planar model", path)
-    return BodyFile(main, mass, position, velocity, Path(path) if path else None, name_line)
+    lines = {e.key.lower(): e.line for e in main_section.entries}
+    return BodyFile(main, mass, position, velocity, Path(path) if path else None, name_line, lines)
 
 
 def format_body(body: BodyFile, separator: str = ".") -> str:

@@ -24,7 +24,7 @@ class ConstantsFile:
 def parse_constants(text: str, path: str | Path | None = None, separator: str = ".") -> ConstantsFile:
     values: dict[str, float] = {}
     lines: dict[str, int] = {}
-    for line in significant_lines(text):
+    for line in significant_lines(text, path):
         key, eq, value = line.text.partition("=")
         if not eq:
             raise ModelError(f"expected c'name = value, found '{line.text}'", path, line.number)

@@ -6,7 +6,8 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 from mbds.errors import ModelError
-from mbds.io.ini import Located, format_settings, parse_ini, read_settings, setting
+from mbds.io.ini import FRACTION, NOT_NEGATIVE, Located, format_settings, parse_ini, read_settings, setting
+from mbds.io.text import parse_number
 
 RESISTING = ("T:T", "T:F", "F:T")
 
@@ -23,6 +24,23 @@ class ContactLaw:
     initial_temperature: float = setting("initialTemperature", "number", 0.0)
     heat_capacity: float = setting("heatCapacity", "number", 0.0, extension=True)  # J/°C per point; 0: none
     cooling_time: float = setting("coolingTime", "number", 0.0, extension=True)  # s; 0: no cooling
+
+
+LAW_RULES = {"friction": NOT_NEGATIVE, "restitution_normal": FRACTION, "restitution_tangent": FRACTION}
+"""The range of the law values (at every temperature and relative velocity)."""
+
+
+def check_law_numbers(law: ContactLaw, path, separator: str = ".") -> None:
+    """The law values written as plain numbers in their range; ModelError at their line."""
+    for name, rule in LAW_RULES.items():
+        item = getattr(law, name)
+        try:
+            value = parse_number(item.text, path, item.line, separator)
+        except ModelError:  # an expression: checked at its initial temperature once the model is assembled
+            continue
+        if not rule.holds(value):
+            key = ContactLaw.__dataclass_fields__[name].metadata["key"]
+            raise ModelError(f"{key} = {item.text} {rule.says}", path, item.line)
 
 
 @dataclass
@@ -69,6 +87,7 @@ def parse_contacts(text: str, path: str | Path | None = None, separator: str = "
                 path,
                 next(e.line for e in s.entries if e.key.lower() == "resistingpenetration"),
             )
+        check_law_numbers(law, path, separator)
         known = {f.metadata["key"].lower() for f in fields(ContactLaw)}
         keys = frozenset(e.key.lower() for e in s.entries) & known
         sections.append(ContactSection(first, second, law, keys, s.line))

@@ -52,7 +52,7 @@ class CoordinatesFile:
 
 def parse_coordinates(text: str, path: str | Path | None = None) -> CoordinatesFile:
     names, numbers = [], []
-    for line in significant_lines(text):
+    for line in significant_lines(text, path):
         name = parse_coordinate_name(line.text, path, line.number)
         if name in names:
             raise ModelError(f"coordinate {name} listed twice", path, line.number)
@@ -91,7 +91,7 @@ def parse_dependent_coordinates(text: str, path: str | Path | None = None) -> De
     """Blocks of ``%%%new%%%``, name, ``%%definition`` (1 or 3 lines), ``%%J``, ``%%j``."""
     blocks: list[dict] = []
     part = None
-    for line in significant_lines(text):
+    for line in significant_lines(text, path):
         if is_directive(line, "%%%new%%%"):
             blocks.append({"line": line.number, "name": None, "definition": [], "J": None, "j": None})
             part = "name"

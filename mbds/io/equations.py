@@ -23,7 +23,7 @@ class ExpressionsFile:
 
 def parse_expressions(text: str, path: str | Path | None = None, count: int | None = None) -> ExpressionsFile:
     """Expressions, one a line; with ``count``, exactly that many are required."""
-    expressions = [Located(line.text, line.number) for line in significant_lines(text)]
+    expressions = [Located(line.text, line.number) for line in significant_lines(text, path)]
     if count is not None and len(expressions) != count:
         last = expressions[-1].line if expressions else 1
         raise ModelError(f"expected {count} expressions (one a line), found {len(expressions)}", path, last)
@@ -32,7 +32,7 @@ def parse_expressions(text: str, path: str | Path | None = None, count: int | No
 
 def parse_energy(text: str, path: str | Path | None = None) -> ExpressionsFile:
     """The mechanical energy: the expression on the first line (later lines are ignored)."""
-    lines = significant_lines(text)
+    lines = significant_lines(text, path)
     return ExpressionsFile([Located(lines[0].text, lines[0].number)] if lines else [], Path(path) if path else None)
 
 
@@ -76,7 +76,7 @@ def split_row(text: str) -> list[str]:
 
 def parse_matrix(text: str, path: str | Path | None = None, size: int | None = None) -> MatrixFile:
     """The n x n mass matrix: n lines of n entries, or n*n lines of one entry each."""
-    lines = significant_lines(text)
+    lines = significant_lines(text, path)
     n = size if size is not None else len(lines)
     if size is not None and len(lines) == n * n and n > 1:
         rows = [[Located(line.text, line.number) for line in lines[i * n : (i + 1) * n]] for i in range(n)]

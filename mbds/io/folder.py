@@ -31,7 +31,7 @@ from mbds.io.equations import (
 from mbds.io.shape import ShapeFile, format_shape, parse_shape
 from mbds.io.text import read_text, write_atomic
 from mbds.io.watches import WatchesFile, format_watches, parse_watches
-from mbds.io.world import WorldFile, format_world, parse_world
+from mbds.io.world import WorldFile, WorldSettings, format_world, parse_world
 
 
 @dataclass
@@ -86,49 +86,61 @@ def read_model_files(path: str | Path) -> ModelFiles:
     """Read a model from a folder or a ``.wld`` file; optional files may be absent.
 
     Optional: ``.dc`` (no dependent coordinates), ``.cns`` (no constants), ``.me`` (energy not
-    tracked), ``.cop`` (no contacts), ``.wtc`` (no watches). The others are required.
+    tracked), ``.cop`` (no contacts), ``.wtc`` (no watches), when they have their default names
+    (``current.dc``, ...); a file named otherwise, or a required one, that is missing is an error
+    at the world file's line that names it.
     """
     world_path = find_world(path)
     world = parse_world(read_text(world_path), world_path)
     sep = world.settings.decimal_separator
-    s = world.settings
     missing: list[str] = []
 
     def load(name: str, parser, empty, **kwargs):
-        file = world.resolve(name)
-        if empty is not None and not file.exists():
+        """The file of world key ``name`` parsed; ``empty`` when it is optional, absent and
+        has its default name (``current.dc``, ...): a file named otherwise must be there."""
+        value = getattr(world.settings, name)
+        file = world.resolve(value)
+        default = WorldSettings.__dataclass_fields__[name].default
+        if empty is not None and not file.exists() and value.strip().lower() == default.lower():
             missing.append(file.name)
             return empty
-        return parser(read_text(file), file, **kwargs)
+        return parser(referred_text(file, world_path, world.line(name)), file, **kwargs)
 
     bodies, shapes = [], []
     for entry in world.bodies:
         body_path = world.directory / entry.text
-        if not body_path.exists():
-            raise ModelError(f"body file '{entry.text}' not found", world_path, entry.line)
-        body = parse_body(read_text(body_path), body_path, sep)
+        body = parse_body(referred_text(body_path, world_path, entry.line, "body file"), body_path, sep)
         if not body.main.shape_file:
             raise ModelError("no shapeFile given", body_path, body.name_line)
         shape_path = body_path.parent / body.main.shape_file
-        if not shape_path.exists():
-            raise ModelError(f"shape file '{body.main.shape_file}' not found", body_path, body.name_line)
+        shape_line = body.lines.get("shapefile", body.name_line)
         bodies.append(body)
-        shapes.append(parse_shape(read_text(shape_path), shape_path, sep))
-    n = s.number_of_coordinates
+        shapes.append(parse_shape(referred_text(shape_path, body_path, shape_line, "shape file"), shape_path, sep))
+    n = world.settings.number_of_coordinates
     return ModelFiles(
         world=world,
         bodies=bodies,
         shapes=shapes,
-        coordinates=load(s.coordinates_file, lambda t, p: parse_coordinates(t, p), None),
-        dependent=load(s.dependent_coordinates_file, parse_dependent_coordinates, DependentCoordinatesFile()),
-        constants=load(s.constants_file, parse_constants, ConstantsFile(), separator=sep),
-        mass_matrix=load(s.mass_matrix_file, parse_matrix, None, size=n),
-        h_vector=load(s.h_vector_file, parse_expressions, None, count=n),
-        energy=load(s.mechanical_energy_file, parse_energy, ExpressionsFile()),
-        contacts=load(s.contact_properties_file, parse_contacts, ContactsFile(), separator=sep),
-        watches=load(s.watches_file, parse_watches, WatchesFile(), separator=sep),
+        coordinates=load("coordinates_file", lambda t, p: parse_coordinates(t, p), None),
+        dependent=load("dependent_coordinates_file", parse_dependent_coordinates, DependentCoordinatesFile()),
+        constants=load("constants_file", parse_constants, ConstantsFile(), separator=sep),
+        mass_matrix=load("mass_matrix_file", parse_matrix, None, size=n),
+        h_vector=load("h_vector_file", parse_expressions, None, count=n),
+        energy=load("mechanical_energy_file", parse_energy, ExpressionsFile()),
+        contacts=load("contact_properties_file", parse_contacts, ContactsFile(), separator=sep),
+        watches=load("watches_file", parse_watches, WatchesFile(), separator=sep),
         missing=missing,
     )
+
+
+def referred_text(path: Path, referrer: Path, line: int | None, what: str = "file") -> str:
+    """The text of ``path``, which line ``line`` of ``referrer`` names; a missing file or a
+    folder is a ModelError at that line, naming ``path``."""
+    if path.is_dir():
+        raise ModelError(f"{what} '{path}' is a folder, expected a file", referrer, line)
+    if not path.exists():
+        raise ModelError(f"{what} '{path}' not found", referrer, line)
+    return read_text(path)
 
 
 def write_model_files(files: ModelFiles, folder: str | Path, world_name: str | None = None) -> Path:

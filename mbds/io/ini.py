@@ -54,7 +54,7 @@ class Section:
 def parse_ini(text: str, file: str | Path | None) -> list[Section]:
     """Sections of an INI text; entries before the first header go to a section named ``""``."""
     sections = [Section("", 0)]
-    for line in significant_lines(text):
+    for line in significant_lines(text, file):
         content = line.text
         if content.startswith("["):
             if not content.endswith("]") or len(content) < 3:
@@ -167,6 +167,39 @@ def read_settings(cls, section: Section | None, file, separator: str = ".", **va
         seen[f.name] = entry.line
         values[f.name] = _parse_value(f.metadata["kind"], entry, file, separator)
     return cls(**values)
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A range a setting must lie in: ``holds(value)``, and ``says`` what it must be."""
+
+    holds: Any
+    says: str
+
+
+POSITIVE = Rule(lambda v: v > 0, "must be positive")
+NOT_NEGATIVE = Rule(lambda v: v >= 0, "must not be negative")
+OPEN_FRACTION = Rule(lambda v: 0 < v < 1, "must lie between 0 and 1 (both excluded)")
+FRACTION = Rule(lambda v: 0 <= v <= 1, "must lie between 0 and 1")
+
+
+def key_line(section: Section | None, cls, name: str) -> int | None:
+    """The line of the key (or an alias) of field ``name`` of ``cls`` in ``section``; the
+    section's header line when the key is not there."""
+    f = cls.__dataclass_fields__[name]
+    keys = {k.lower() for k in (f.metadata["key"], *f.metadata["aliases"])}
+    found = [e.line for e in section.entries if e.key.lower() in keys] if section else []
+    return found[-1] if found else (section.line if section else None)
+
+
+def check_rules(obj, rules: dict, section: Section | None, file) -> None:
+    """Each field of the settings ``obj`` named in ``rules`` (field -> :class:`Rule`) that is
+    set satisfies its rule; ModelError at the line of its key otherwise."""
+    for name, rule in rules.items():
+        value = getattr(obj, name)
+        if value is not None and not rule.holds(value):
+            key = type(obj).__dataclass_fields__[name].metadata["key"]
+            raise ModelError(f"{key} = {format_number(value)} {rule.says}", file, key_line(section, type(obj), name))
 
 
 def format_settings(obj, separator: str = ".", *, skip_defaults: bool = False) -> list[str]:

@@ -8,7 +8,10 @@ from pathlib import Path
 
 from mbds.errors import ModelError, warn
 from mbds.io.ini import (
+    NOT_NEGATIVE,
     Located,
+    check_rules,
+    key_line,
     find_section,
     format_settings,
     parse_ini,
@@ -16,6 +19,7 @@ from mbds.io.ini import (
     setting,
     split_list,
 )
+from mbds.io.folder import version_name
 from mbds.io.text import MAXINT, read_text
 
 
@@ -34,6 +38,10 @@ class JobSettings:
     frames_per_second: int = setting("framesPerSecond", "integer", 0)
     delay_start_minutes: float = setting("delayStartMinutes", "minutes", 0)
     exit_at_finish: bool = setting("exitAtFinish", "flag", False)
+
+
+RULES = {name: NOT_NEGATIVE for name in ("max_minutes_for_job", "max_minutes_for_jobs", "max_lines_in_log",
+                                          "delay_start_minutes", "frames_per_second")}
 
 
 @dataclass
@@ -87,6 +95,11 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
     (key, :class:`Located` value)) for the campaign layer to read.
     """
     sections = parse_ini(text, path)
+    seen: dict[str, int] = {}
+    for s in sections:
+        if s.name.lower() in seen:
+            raise ModelError(f"section [{s.name}] given twice (first on line {seen[s.name.lower()]})", path, s.line)
+        seen[s.name.lower()] = s.line
     main = find_section(sections, "main")
     if main is None:
         raise ModelError("no [main] section", path, 1)
@@ -103,13 +116,11 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
         if s.name.lower() != "campaign":
             warn(f"unknown section [{s.name}] (ignored)", path, s.line)
         extra[s.name] = [(e.key, Located(e.value, e.line)) for e in s.entries]
-    for name in ("max_minutes_for_job", "max_minutes_for_jobs", "max_lines_in_log", "delay_start_minutes"):
-        if getattr(settings, name) < 0:
-            key = JobSettings.__dataclass_fields__[name].metadata["key"]
-            raise ModelError(f"{key} must not be negative", path, main.line)
+    check_rules(settings, RULES, main, path)
     lo, hi = settings.lexico_randomization_range
     if lo < 0 or hi < lo:
-        raise ModelError("lexicoRandomizationRange must be 'min,max' with 0 <= min <= max", path, main.line)
+        raise ModelError("lexicoRandomizationRange must be 'min,max' with 0 <= min <= max", path,
+                         key_line(main, JobSettings, "lexico_randomization_range"))
     return JobFile(settings, versions, extra, Path(path) if path else None, lines)
 
 
@@ -125,3 +136,34 @@ def format_job(job: JobFile) -> str:
         lines.append(f"[{name}]")
         lines += [f"{key} = {value.text}" for key, value in entries]
     return "\n".join(lines) + "\n"
+
+
+def read_checked_job(path: str | Path) -> JobFile:
+    """The job file at ``path``, checked before anything runs: its world file exists, and each
+    listed version exists, is 000 (made from the model files) or is made by the version listed
+    just before it (its predecessor, with ``createNextVersionAtEnd = 1``)."""
+    path = Path(path)
+    if path.suffix.lower() != ".job":
+        raise ModelError("expected a .job file", path)
+    job = read_job(path)
+    world = job.world_path()
+    if not world.is_file():
+        raise ModelError(f"world file {world.name} not found", path, job.line("worldFile"))
+    if world.suffix.lower() != ".wld":
+        raise ModelError(f"worldFile {job.settings.world_file.strip()} is not a .wld world file", path,
+                         job.line("worldFile"))
+    previous = None
+    for number in job.versions:
+        made = number == 0 or (job.settings.create_next_version_at_end and previous == number - 1)
+        if not made and not version_exists(path.parent / version_name(number)):
+            creates = "" if job.settings.create_next_version_at_end else " (createNextVersionAtEnd = 0)"
+            raise ModelError(
+                f"version {version_name(number)} does not exist and the version listed before it "
+                f"does not create it{creates}", path, job.line("jobs"))
+        previous = number
+    return job
+
+
+def version_exists(version: Path) -> bool:
+    """Whether the version folder is there with its world file."""
+    return version.is_dir() and any(version.glob("*.wld"))

@@ -35,7 +35,7 @@ def parse_shape(text: str, path: str | Path | None = None, separator: str = ".")
     The block holds either two lines (the N x values, then the N y values: the manual's layout)
     or N lines of ``x y`` pairs.
     """
-    lines = significant_lines(text)
+    lines = significant_lines(text, path)
     count = None
     count_line = None
     data: list = []

@@ -42,6 +42,9 @@ def read_text(path: str | Path) -> str:
         raise ModelError(f"cannot read file: {exc.strerror}", path) from None
     if raw.startswith(b"\xef\xbb\xbf"):
         raw = raw[3:]
+    if b"\x00" in raw:
+        line = raw.count(b"\n", 0, raw.index(b"\x00")) + 1
+        raise ModelError("binary data (NUL character) in a text file", path, line)
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError:
@@ -58,12 +61,13 @@ def strip_comment(text: str) -> str:
     return (text if cut < 0 else text[:cut]).strip()
 
 
-def significant_lines(text: str) -> list[Line]:
-    """The non-empty lines of ``text`` after comments are removed, with their numbers."""
+def significant_lines(text: str, file: str | Path | None = None) -> list[Line]:
+    """The non-empty lines of ``text`` (of ``file``, for errors) after comments are removed,
+    with their numbers."""
     lines = []
     for number, raw in enumerate(text.splitlines(), start=1):
         if "\x00" in raw:
-            raise ModelError("binary data (NUL character) in a text file", None, number)
+            raise ModelError("binary data (NUL character) in a text file", file, number)
         content = strip_comment(raw)
         if content:
             lines.append(Line(number, content))
@@ -135,12 +139,27 @@ def atomic_path(path: str | Path):
     """A temporary path beside ``path`` to write to; renamed to ``path`` when the block ends
     normally, removed otherwise, so that ``path`` is either the old file or the whole new one."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    if path.is_dir():
+        raise ModelError("is a folder where mbds writes a file: move it away", path)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    except OSError as exc:
+        raise ModelError(f"cannot write here: {exc.strerror or exc}", path) from None
     os.close(fd)
     try:
         yield Path(tmp)
-        os.chmod(tmp, 0o644)  # mkstemp makes it private
+        os.chmod(tmp, 0o666 & ~process_umask())  # mkstemp makes it private; give it the usual permissions
         os.replace(tmp, path)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise ModelError(f"cannot write the file: {exc.strerror or exc}", path) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def process_umask() -> int:
+    """The process's umask (read by setting it and setting it back)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask

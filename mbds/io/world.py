@@ -13,7 +13,13 @@ from pathlib import Path
 
 from mbds.errors import ModelError, warn
 from mbds.io.ini import (
+    NOT_NEGATIVE,
+    OPEN_FRACTION,
+    POSITIVE,
     Located,
+    Section,
+    check_rules,
+    key_line,
     find_section,
     format_settings,
     parse_ini,
@@ -62,6 +68,35 @@ class WorldSettings:
     break_time: Located = setting("breakTime", "expression", Located("1"))
 
 
+RULES = {
+    "number_of_coordinates": NOT_NEGATIVE,
+    "lcp_pivot_tolerance_min": OPEN_FRACTION,
+    "lcp_pivot_tolerance_max": OPEN_FRACTION,
+    "lcp_lexico_zero_tolerance": OPEN_FRACTION,
+    "zero_velocity_tolerance": NOT_NEGATIVE,
+    "minimum_timestep": POSITIVE,
+    "maximum_timestep": POSITIVE,
+    "maximum_penetration": POSITIVE,
+    "maximum_displacement_factor": POSITIVE,
+    "history_multiple_of_maximum_timestep": POSITIVE,
+}
+"""The range of each numeric ``[main]`` key (the LCP solver needs 0 < min <= max < 1)."""
+_FILE_KEYS = ("constants_file", "coordinates_file", "dependent_coordinates_file", "mass_matrix_file",
+              "h_vector_file", "mechanical_energy_file", "contact_properties_file", "watches_file")
+
+
+def check_world_settings(settings: WorldSettings, main: Section | None, path) -> None:
+    """Every ``[main]`` value in its range, and the pairs in order; ModelError at the key's line."""
+    check_rules(settings, RULES, main, path)
+    for small, large in (("minimum_timestep", "maximum_timestep"),
+                         ("lcp_pivot_tolerance_min", "lcp_pivot_tolerance_max")):
+        if getattr(settings, small) > getattr(settings, large):
+            raise ModelError(f"{_key(small)} is larger than {_key(large)}", path, key_line(main, WorldSettings, small))
+    for name in _FILE_KEYS:
+        if not getattr(settings, name).strip():
+            raise ModelError(f"{_key(name)} names no file", path, key_line(main, WorldSettings, name))
+
+
 @dataclass
 class WorldFile:
     """A world file: settings and the body files in the order of ``[bodies]``."""
@@ -70,6 +105,11 @@ class WorldFile:
     bodies: list[Located] = field(default_factory=list)
     path: Path | None = field(default=None, compare=False)
     generalized_start: list[tuple[str, Located]] = field(default_factory=list)  # (g'name, "position[, velocity]")
+    main: Section | None = field(default=None, compare=False, repr=False)  # as read, for the lines of its keys
+
+    def line(self, name: str) -> int | None:
+        """The line of the key of settings field ``name`` (else of ``[main]``), None when not read from a file."""
+        return key_line(self.main, WorldSettings, name) if self.main else None
 
     @property
     def directory(self) -> Path:
@@ -87,20 +127,22 @@ class WorldFile:
         return self.directory / name
 
 
-def decimal_separator_of(text: str) -> str:
-    """The ``decimalSeparator`` a world text declares (``.`` when absent)."""
-    for line in significant_lines(text):
+def decimal_separator_of(text: str, path=None) -> str:
+    """The ``decimalSeparator`` a world text declares (``.`` when absent); ModelError at its
+    line when it is neither ``.`` nor ``,``."""
+    for line in significant_lines(text, path):
         key, sep, value = line.text.partition("=")
         if sep and key.strip().lower() == "decimalseparator":
-            return value.strip() or "."
+            separator = value.strip() or "."
+            if separator not in (".", ","):
+                raise ModelError(f"decimalSeparator must be '.' or ',', not '{separator}'", path, line.number)
+            return separator
     return "."
 
 
 def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
     """A :class:`WorldFile` from the text of a ``.wld`` file."""
-    separator = decimal_separator_of(text)
-    if separator not in (".", ","):
-        raise ModelError(f"decimalSeparator must be '.' or ',', not '{separator}'", path)
+    separator = decimal_separator_of(text, path)
     sections = parse_ini(text, path)
     for s in sections:
         if s.name.lower() not in ("main", "bodies", GENERALIZED_START.lower()):
@@ -109,17 +151,7 @@ def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
     if main is None:
         raise ModelError("no [main] section", path, 1)
     settings = read_settings(WorldSettings, main, path, separator)
-    if settings.number_of_coordinates < 0:
-        raise ModelError("numberOfGeneralizedCoordinates must not be negative", path)
-    for name in ("minimum_timestep", "maximum_timestep", "maximum_penetration"):
-        if getattr(settings, name) <= 0:
-            raise ModelError(f"{_key(name)} must be positive", path, _line_of(main, _key(name)))
-    if settings.minimum_timestep > settings.maximum_timestep:
-        raise ModelError("minimumTimestep is larger than maximumTimestep", path, _line_of(main, "minimumTimestep"))
-    if settings.lcp_pivot_tolerance_min > settings.lcp_pivot_tolerance_max:
-        raise ModelError(
-            "LCPPivotToleranceMin is larger than LCPPivotToleranceMax", path, _line_of(main, "LCPPivotToleranceMin")
-        )
+    check_world_settings(settings, main, path)
     bodies_section = find_section(sections, "bodies")
     bodies = [Located(e.value, e.line) for e in bodies_section.entries] if bodies_section else []
     for e, b in zip(bodies_section.entries if bodies_section else [], bodies):
@@ -127,18 +159,11 @@ def parse_world(text: str, path: str | Path | None = None) -> WorldFile:
             raise ModelError(f"'{e.key}' names no body file", path, e.line)
     start = find_section(sections, GENERALIZED_START)
     generalized_start = [(e.key, Located(e.value, e.line)) for e in start.entries] if start else []
-    return WorldFile(settings, bodies, Path(path) if path else None, generalized_start)
+    return WorldFile(settings, bodies, Path(path) if path else None, generalized_start, main)
 
 
 def _key(field_name: str) -> str:
     return WorldSettings.__dataclass_fields__[field_name].metadata["key"]
-
-
-def _line_of(section, key: str) -> int | None:
-    for entry in section.entries:
-        if entry.key.lower() == key.lower():
-            return entry.line
-    return None
 
 
 def format_world(world: WorldFile) -> str:

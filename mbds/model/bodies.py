@@ -150,6 +150,11 @@ def _mass_properties(body_file, props, virtual: bool):
         return 0.0, 0.0, False, False
     mass = given.mass if given else None
     inertia = given.inertia_zz if given else None
+    if mass is not None and inertia is None:
+        inertia = mass * props.second_moment / props.area
+        warn(f"body '{main.name}': mass given without InertiaZZ; Jzz = {inertia:.6g} kg m^2, the shape's "
+             "inertia scaled to the given mass (give InertiaZZ to set it)", body_file.path, body_file.name_line)
+        return mass, inertia, False, True
     if mass is None or inertia is None:
         missing = [k for k, v in (("density", main.density), ("thickness", main.thickness)) if v is None]
         if missing:

@@ -15,6 +15,7 @@ from mbds.io.coordinates import CoordinateName, parse_coordinate_name
 from mbds.io.folder import ModelFiles, read_model_files
 from mbds.io.ini import Located, split_list
 from mbds.model.bodies import GENERALIZED, POSE, Body, assemble_bodies
+from mbds.model.checks import check_laws, check_mass_matrix
 from mbds.model.contacts import ContactPair, assemble_contacts
 from mbds.model.equations import ExpressionReader, Parameters, gather_expressions
 from mbds.model.watches import Watch, assemble_watches
@@ -64,6 +65,7 @@ def load_model(path: str | Path, *, version: int = 0, compile: bool = True, cach
     not to. ``version`` selects the ``[body:k]`` watch sections. Raises :class:`ModelError`."""
     files = read_model_files(path)
     model = assemble_model(files, version)
+    check_mass_matrix(model.expressions, model.parameters, model.q0, files.mass_matrix.path)
     if compile:
         model.compile(cache_dir)
     return model
@@ -73,10 +75,11 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
     """A :class:`Model` from files already read."""
     bodies = assemble_bodies(files)
     pairs, laws = assemble_contacts(files, bodies)
+    check_laws(laws, files)
     expressions, params = gather_expressions(files, bodies, laws)
     watches = assemble_watches(files, bodies, version)
     q0, qd0 = _start_state(files, bodies)
-    break_time = _break_time(files, bodies)
+    duration = break_time(files, files.world.path, bodies)
     return Model(
         files=files,
         version=version,
@@ -88,7 +91,7 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
         watches=watches,
         expressions=expressions,
         parameters=params,
-        break_time=break_time,
+        break_time=duration,
         q0=q0,
         qd0=qd0,
     )
@@ -131,12 +134,15 @@ def _generalized_start(files: ModelFiles, bodies: list[Body], q0: np.ndarray, qd
         qd0[index[name.name]] = numbers[1] if len(numbers) > 1 else 0.0
 
 
-def _break_time(files: ModelFiles, bodies: list[Body]) -> float:
+def break_time(files: ModelFiles, path, bodies: list[Body] = ()) -> float:
+    """The world's ``breakTime`` (s), a positive number; ModelError at its line of ``path``."""
     item = files.world.settings.break_time
-    expr = ExpressionReader(files, bodies).read(item, files.world.path, constant_only=True)
+    expr = ExpressionReader(files, list(bodies)).read(item, path, constant_only=True)
     values = {S.constant(name): v for name, v in files.constants.values.items()}
-    value = float(expr.subs(values).evalf())
+    try:
+        value = float(expr.subs(values).evalf())
+    except (TypeError, ValueError):
+        value = float("nan")
     if not np.isfinite(value) or value <= 0:
-        raise ModelError(f"breakTime must be a positive time, is {value}", files.world.path, item.line)
+        raise ModelError(f"breakTime must be a positive time, is {value}", path, item.line)
     return value
-

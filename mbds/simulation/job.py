@@ -22,7 +22,7 @@ from mbds.data.history import read_attributes, read_point_losses
 from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import run_number, version_name, version_number
-from mbds.io.job import JobFile, JobSettings, read_job
+from mbds.io.job import JobFile, JobSettings, read_checked_job, version_exists
 from mbds.io.lock import folder_lock
 from mbds.model.load import load_model
 from mbds.simulation.run import RunStopped
@@ -121,29 +121,6 @@ class JobResult:
     stopped: str = ""
 
 
-def read_checked_job(path: str | Path) -> JobFile:
-    """The job file at ``path``, checked before anything runs: its world file exists, and each
-    listed version exists, is 000 (made from the model files) or is made by the version listed
-    just before it (its predecessor, with ``createNextVersionAtEnd = 1``)."""
-    path = Path(path)
-    if path.suffix.lower() != ".job":
-        raise ModelError("expected a .job file", path)
-    job = read_job(path)
-    world = job.world_path()
-    if not world.is_file():
-        raise ModelError(f"world file {world.name} not found", path, job.line("worldFile"))
-    previous = None
-    for number in job.versions:
-        made = number == 0 or (job.settings.create_next_version_at_end and previous == number - 1)
-        if not made and not _exists(path.parent / version_name(number)):
-            creates = "" if job.settings.create_next_version_at_end else " (createNextVersionAtEnd = 0)"
-            raise ModelError(
-                f"version {version_name(number)} does not exist and the version listed before it "
-                f"does not create it{creates}", path, job.line("jobs"))
-        previous = number
-    return job
-
-
 def run_job(path: str | Path, report: JobReport | None = None) -> JobResult:
     """Run the job file at ``path``: every listed version without a complete run is run in full
     from the model's start (a version continuing another's run, from that run's end) and, with ``createNextVersionAtEnd = 1``, every complete one without
@@ -183,7 +160,7 @@ def _run_job(job: JobFile, report: JobReport) -> JobResult:
             if not record.complete:
                 result.stopped = f"{version} stopped ({record.stopped})"
                 return result
-        if settings.create_next_version_at_end and not _exists(folder / version_name(number + 1)):
+        if settings.create_next_version_at_end and not version_exists(folder / version_name(number + 1)):
             created = next_version(version)
             result.created.append(number + 1)
             report.note(f"created {created}, worn by the losses of {version_name(number)}")
@@ -226,16 +203,11 @@ def time_limits(settings: JobSettings, deadline: float = math.inf, shown: Progre
     return progress
 
 
-def _exists(version: Path) -> bool:
-    """Whether the version folder is there with its world file."""
-    return version.is_dir() and any(version.glob("*.wld"))
-
-
 def _done(version: Path, successor_needed: bool) -> bool:
     """Whether a job has nothing left to do for ``version``."""
-    if successor_needed and not _exists(version.parent / version_name(version_number(version) + 1)):
+    if successor_needed and not version_exists(version.parent / version_name(version_number(version) + 1)):
         return False
-    return _exists(version) and not incomplete(version)
+    return version_exists(version) and not incomplete(version)
 
 
 def _listing(versions: list[int]) -> str:

@@ -6,7 +6,6 @@ import contextlib
 import copy
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -22,12 +21,12 @@ from mbds.data.legacy import (
 from mbds.data.record import RunRecord, SeriesMaker, make_header, make_record
 from mbds.errors import ModelError
 from mbds.io.folder import run_number, version_name
-from mbds.io.job import JobSettings
 from mbds.io.text import atomic_path
 from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
 from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
+from mbds.simulation.options import RunOptions
 from mbds.simulation.run import (
     RunState,
     RunStopped,
@@ -43,20 +42,6 @@ PROGRESS_CHUNK = 256
 """History samples per call of the stepper at most (each call also ends after a bounded number of
 passes of its step loop): how often progress, Ctrl-C and the limits are looked at, and how many
 samples are held in memory before they go to the files."""
-
-
-@dataclass
-class RunOptions:
-    """``duration``: length of the run (s), default the world's ``breakTime``; ``seed`` of the
-    lexicographic tolerance draws (a continued run keeps the random state it starts from);
-    ``start_from``: the version whose end state the run starts from (None: the model's start);
-    ``job``: the job settings that apply (``lexicoRandomizationRange``, ``maxLinesInLog``; None:
-    those of the model folder's job file)."""
-
-    duration: float | None = None
-    seed: int = 0
-    start_from: int | None = None
-    job: JobSettings | None = None
 
 
 Progress = Callable[[float, float, float, float], None]

@@ -21,7 +21,7 @@ from mbds.io.folder import (
     version_number,
 )
 from mbds.io.job import JobSettings, read_job
-from mbds.io.text import write_atomic
+from mbds.io.text import process_umask, write_atomic
 from mbds.model.load import assemble_model
 
 
@@ -61,7 +61,7 @@ def create_model_copy(target: str | Path, files: ModelFiles, number: int, texts:
     target.parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
     try:
-        staging.chmod(0o755)  # mkdtemp makes it private
+        staging.chmod(0o777 & ~process_umask())  # mkdtemp makes it private
         copy_model_files(files, staging)
         for name, text in (texts or {}).items():
             write_atomic(staging / name, text)
@@ -74,12 +74,35 @@ def create_model_copy(target: str | Path, files: ModelFiles, number: int, texts:
     return target
 
 
-def run_folder(path: str | Path, start_from: int | None = None) -> Path:
+def differing_copies(model_folder: str | Path, version: str | Path) -> list[str]:
+    """The model files of ``model_folder`` whose copies in the version folder ``version`` are
+    missing or differ from them (paths relative to the world file's folder)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        files = read_model_files(model_folder)
+    base = files.world.path.parent.resolve()
+    differing = []
+    for path in files.paths():
+        relative = Path(path).resolve().relative_to(base)
+        copy = Path(version) / relative
+        if not copy.is_file() or copy.read_bytes() != Path(path).read_bytes():
+            differing.append(relative.as_posix())
+    return differing
+
+
+def refresh_copies(model_folder: str | Path, version: str | Path) -> None:
+    """Copy the model folder's files over their copies in the version folder ``version``."""
+    copy_model_files(read_model_files(model_folder), version)
+
+
+def run_folder(path: str | Path, start_from: int | None = None, force: bool = False) -> Path:
     """The version folder a run of ``path`` uses, created when needed.
 
     ``path`` is a version folder (created from the model folder's files, or from those of
     version ``start_from`` if given, when absent) or a model folder: then version 000, or the
-    version after the highest existing one when the run starts from ``start_from``.
+    version after the highest existing one when the run starts from ``start_from``. When version
+    000 exists and the model folder's files differ from its copies, ModelError names them,
+    unless ``force``: then the copies are replaced by the model folder's files.
     """
     path = Path(path)
     number = version_number(path)
@@ -100,6 +123,16 @@ def run_folder(path: str | Path, start_from: int | None = None) -> Path:
             raise ModelError(f"no version {version_name(start_from)} to start from", model_folder)
         if not (source / HISTORY).is_file():
             raise ModelError(f"no {HISTORY} to start from: run this version first", source)
+    target = model_folder / version_name(number)
+    if number == 0 and source is None and target.is_dir() and any(target.glob("*.wld")):
+        differing = differing_copies(model_folder, target)
+        if differing and not force:
+            raise ModelError(f"the model folder's {', '.join(differing)} differ from the copies in version 000, "
+                             "which a run of 000 uses: run with --force to replace 000's copies (and its run) by "
+                             "the model folder's files, or make the next version from 000's run with "
+                             f"'mbds next {target}'", model_folder)
+        if differing:
+            refresh_copies(model_folder, target)
     return ensure_version(model_folder, number, source)
 
 

@@ -28,7 +28,7 @@ from mbds.io.folder import (
     version_number,
 )
 from mbds.io.shape import ShapeFile, format_shape
-from mbds.io.text import write_atomic
+from mbds.io.text import process_umask, write_atomic
 from mbds.wear.plan import WearPlan, plan_wear
 
 WEAR_FILE = "wear.nc"
@@ -48,6 +48,7 @@ def create_next_version(folder: str | Path, losses: dict[str, np.ndarray]) -> Pa
     plan = plan_wear(files, losses, version)
     temporary = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=folder.parent))
     try:
+        temporary.chmod(0o777 & ~process_umask())  # mkdtemp makes it private; a version gets the usual permissions
         copy_model_files(files, temporary)
         separator = files.separator
         for wear in plan.bodies:

@@ -37,7 +37,7 @@ def test_a_save_that_fails_leaves_the_previous_ledger_whole(tmp_path, monkeypatc
         raise OSError("disk full")
 
     monkeypatch.setattr(os, "replace", crash)
-    with pytest.raises(OSError):
+    with pytest.raises(ModelError, match="cannot write the file: disk full"):
         ledger.mark("b", DONE)
     assert (tmp_path / LEDGER_FILE).read_text() == before
     assert [p.name for p in tmp_path.iterdir()] == [LEDGER_FILE]

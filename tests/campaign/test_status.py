@@ -2,6 +2,7 @@
 text when the output is not a terminal."""
 
 import io
+import time
 
 from rich.console import Console
 
@@ -73,3 +74,16 @@ def test_bit_identical_replicates_are_reported(tmp_path):
     tree = mbds.open_campaign(expand(job).folder)
     assert json.loads(tree.ds.attrs["identical_replicates"]) == ["v00/000"]
     tree.close()
+
+
+def test_status_of_a_100000_task_plan_takes_under_2_s_of_cpu(tmp_path):
+    gravity = ", ".join(f"{9 + k / 100:.2f}" for k in range(100))
+    job = two_mass(tmp_path, f"c'gravity = {gravity}\nreplicates = 143\n")  # 100 x 143 chains of 7 tasks
+    start = time.process_time()
+    plan = expand(job)
+    out = io.StringIO()
+    print_status(plan, Ledger.read(plan.folder), Console(file=out, width=160))
+    cpu = time.process_time() - start
+    assert len(plan.tasks) == 100_100 and "0 of 100100 tasks done" in out.getvalue()
+    assert "... and 14200 more chains (first 100 shown)" in out.getvalue()
+    assert cpu < 2.0, f"{cpu:.2f} s"

@@ -2,6 +2,7 @@
 on PATH, whose job id lands in the ledger."""
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -84,3 +85,69 @@ def test_scripts_are_valid_shell(tmp_path):
     for shell, path in (("bash", script), ("sh", ROOT / "workflows" / "local.sh")):
         checked = subprocess.run([shell, "-n", str(path)], capture_output=True, text=True)
         assert checked.returncode == 0, checked.stderr
+
+
+def test_a_wheel_ships_the_template_and_submit_works_from_it(tmp_path):
+    """Built and installed as a user would (not editable), `submit --dry-run` finds its template."""
+    source = tmp_path / "source"  # the package's sources alone: the build leaves nothing in the repository
+    shutil.copytree(ROOT / "mbds", source / "mbds", ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, source / name)
+    built = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
+                            "-w", str(tmp_path / "wheel"), str(source)], capture_output=True, text=True)
+    assert built.returncode == 0, built.stderr
+    (wheel,) = (tmp_path / "wheel").glob("mbds-*.whl")
+    site = tmp_path / "site"
+    installed = subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target", str(site),
+                                str(wheel)], capture_output=True, text=True)
+    assert installed.returncode == 0, installed.stderr
+    job = two_mass(tmp_path, None)
+    env = {**os.environ, "PYTHONPATH": str(site)}
+    done = subprocess.run([sys.executable, "-c", "import mbds, sys; print(mbds.__file__); "
+                           "from mbds.cli.campaign import app; sys.argv = ['mbds-campaign', 'submit', '--dry-run', "
+                           f"{str(job)!r}]; app()"], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith(str(site)) and "#SBATCH --ntasks=2" in done.stdout
+
+
+def test_nodes_memory_mpi_and_a_preamble_reach_the_script(tmp_path):
+    job = two_mass(tmp_path, None)
+    preamble = tmp_path / "env.sh"
+    preamble.write_text("module load mpich\nsource ~/venv/bin/activate\n")
+    code, out, err = campaign("submit", job, "--dry-run", "--nodes", "2", "--mem-per-cpu", "2G", "--mpi", "pmix",
+                              "--preamble", preamble)
+    assert code == 0, err
+    assert "#SBATCH --nodes=2\n#SBATCH --mem-per-cpu=2G\n" in out
+    assert "# Preamble from env.sh:\nmodule load mpich\nsource ~/venv/bin/activate\n# The ranks" in out
+    assert f"srun --mpi=pmix {sys.executable} -m mpi4py" in out
+    preamble.write_text("module load mpich\n#SBATCH --mem=1G\n")
+    code, out, err = campaign("submit", job, "--dry-run", "--preamble", preamble)
+    assert code == 2 and f"{preamble}:2: #SBATCH lines go in submit's options" in " ".join(err.split())
+
+
+def test_a_complete_campaign_is_not_submitted_again_without_force(tmp_path, monkeypatch):
+    job = two_mass(tmp_path, None, jobs="000", create=0)
+    bin_folder = fake_sbatch(tmp_path / "bin", "Submitted batch job 7")
+    monkeypatch.setenv("PATH", f"{bin_folder}{os.pathsep}{os.environ['PATH']}")
+    from mbds.campaign.plan import expand
+
+    plan = expand(job)
+    ledger = Ledger.read(plan.folder)
+    ledger.bind(plan)
+    for task in plan.tasks:
+        ledger.mark(task.id, "done")
+    code, out, err = campaign("submit", job)
+    assert code == 0 and "every task of the campaign is done; nothing submitted" in err
+    assert not (bin_folder / "args.txt").exists()
+    code, out, err = campaign("submit", job, "--force")
+    assert code == 0 and "submitted Slurm job 7" in out
+
+
+def test_submit_from_another_folder_gives_sbatch_the_full_path(tmp_path, monkeypatch):
+    job = two_mass(tmp_path, None)
+    bin_folder = fake_sbatch(tmp_path / "bin", "Submitted batch job 8")
+    monkeypatch.setenv("PATH", f"{bin_folder}{os.pathsep}{os.environ['PATH']}")
+    monkeypatch.chdir(tmp_path)
+    code, out, err = campaign("submit", job.relative_to(tmp_path))
+    assert code == 0, err
+    assert (bin_folder / "args.txt").read_text().split() == [str(job.parent / "campaign" / SCRIPT_NAME)]

@@ -53,14 +53,12 @@ def test_a_variant_world_that_fails_the_world_checks_is_refused_at_its_line(tmp_
     assert "variant v01 (world.minimumTimestep = 1): minimumTimestep is larger than maximumTimestep" in str(caught.value)
 
 
-def test_a_variant_that_breaks_the_model_fails_its_task_and_writes_nothing(tmp_path):
+def test_a_value_that_breaks_the_model_is_refused_at_its_job_file_line(tmp_path):
     job = two_mass(tmp_path, "contact.mass1-mass2.friction = 0.1, 2*c'nothing\n", jobs="000")
-    plan = expand(job)
-    good, bad = plan.task("v00/prepare"), plan.task("v01/prepare")
-    assert run_task(good)["state"] == DONE
-    result = run_task(bad)
-    assert result["state"] == "failed" and "nothing" in result["reason"], result
-    assert not bad.folder.exists()
+    with pytest.raises(ModelError) as caught:
+        expand(job)
+    assert str(caught.value).startswith(f"{job}:5: ") and "c'nothing" in str(caught.value)
+    assert not (job.parent / "campaign").exists()
 
 
 def test_values_are_written_with_the_models_decimal_separator(tmp_path):
@@ -77,3 +75,26 @@ def test_values_are_written_with_the_models_decimal_separator(tmp_path):
     assert files.constants.values["gravity"] == 1.62 and "c'gravity = 1,62" in (task.folder / "2mass.cns").read_text()
     assert files.contacts.sections[0].law.friction.text == "0,25"
     assert files.world.settings.maximum_timestep == 2.5e-4
+
+
+def test_linked_keys_take_their_values_together(tmp_path):
+    job = two_mass(tmp_path, "c'gravity = 9.81, 5, 1.62\ncontact.mass1-mass2.friction = 0.1, 0.2, 0.3\n"
+                   "contact.mass1-mass2.restitutionNormal = 0.5, 0.7\n"
+                   "zip = c'gravity, contact.mass1-mass2.friction\n", jobs="000", create=0)
+    plan = expand(job)
+    assert [tuple(v.values.values()) for v in plan.variants] == [
+        ("9.81", "0.1", "0.5"), ("9.81", "0.1", "0.7"), ("5", "0.2", "0.5"), ("5", "0.2", "0.7"),
+        ("1.62", "0.3", "0.5"), ("1.62", "0.3", "0.7")]
+
+
+@pytest.mark.parametrize(("zip_line", "words"), [
+    ("zip = c'gravity, contact.mass1-mass2.restitutionNormal", "as many values each"),
+    ("zip = c'gravity, c'nothing", "'c'nothing' is not a varied key"),
+    ("zip = c'gravity", "two varied keys or more"),
+])
+def test_bad_links_are_refused_at_their_line(tmp_path, zip_line, words):
+    job = two_mass(tmp_path, "c'gravity = 9.81, 5\ncontact.mass1-mass2.restitutionNormal = 0.5, 0.6, 0.7\n"
+                   + zip_line + "\n", jobs="000", create=0)
+    with pytest.raises(ModelError) as caught:
+        expand(job)
+    assert str(caught.value).startswith(f"{job}:7: ") and words in str(caught.value)

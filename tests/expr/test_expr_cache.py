@@ -11,6 +11,7 @@ from pathlib import Path
 import numba
 import pytest
 
+from mbds.errors import ModelError
 from mbds.expr import cache
 
 # Compiles the test model with the cache directory of $MBDS_CACHE_DIR, calls every function once
@@ -73,7 +74,26 @@ def test_store_writes_once(tmp_path):
     path.write_text("X = 2\n")  # damaged
     cache.store(source, tmp_path / "models")
     assert path.read_text() == source
-    assert [p.name for p in path.parent.iterdir()] == [path.name]  # no temporary files left
+    assert sorted(p.name for p in path.parent.iterdir()) == ["__pycache__", path.name]  # no temporary files left
+
+
+def test_the_cache_is_private_and_a_shared_one_is_refused(tmp_path):
+    folder = tmp_path / "models"
+    path = cache.store("X = 1\n", folder)
+    assert folder.stat().st_mode & 0o777 == 0o700 and (folder / "__pycache__").stat().st_mode & 0o777 == 0o700
+    assert path.stat().st_mode & 0o077 == 0
+    folder.chmod(0o770)  # a group could leave code there
+    with pytest.raises(ModelError, match="writable by other users"):
+        cache.store("X = 1\n", folder)
+    folder.chmod(0o700)
+    (folder / "__pycache__").chmod(0o777)
+    with pytest.raises(ModelError, match="writable by other users"):
+        cache.store("X = 1\n", folder)
+    (folder / "__pycache__").chmod(0o700)
+    if os.getuid() == 0:  # only root can give a file away
+        os.chown(path, 65534, -1)
+        with pytest.raises(ModelError, match="belongs to another user"):
+            cache.store("X = 1\n", folder)
 
 
 def test_load_imports_once(tmp_path):

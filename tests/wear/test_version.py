@@ -1,5 +1,7 @@
 """Creating the next version: copies, worn shapes, constants and the record of changes."""
 
+import os
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -51,3 +53,15 @@ def test_failed_reshaping_leaves_no_folder(tmp_path):
     with pytest.raises(ModelError, match="would break its shape"):
         create_next_version(source, {"a": np.array([0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0])})
     assert sorted(p.name for p in (tmp_path / "model").iterdir()) == ["000"]
+
+
+def test_the_next_version_gets_the_umasks_permissions(tmp_path):
+    source = tmp_path / "model" / "000"
+    write_model(source, WTC)
+    previous = os.umask(0o027)  # a group-shared project
+    try:
+        target = create_next_version(source, {"a": np.zeros(8), "b": np.zeros(8)})
+    finally:
+        os.umask(previous)
+    assert target.stat().st_mode & 0o777 == 0o750
+    assert all(p.stat().st_mode & 0o777 == 0o640 for p in target.iterdir() if p.suffix == ".cns")
