@@ -7,7 +7,7 @@ Each returns a DapbcResult with DAP_BC's post arrays at the report times 0, DT, 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -81,7 +81,6 @@ class DapbcResult:
     steps: int = 0
     rejected: int = 0
     correction: Correction | None = None
-    extra: dict = field(default_factory=dict)
 
 
 def initial_state(system: DapbcSystem, correct: bool) -> tuple[np.ndarray, np.ndarray, Correction | None]:
@@ -91,8 +90,8 @@ def initial_state(system: DapbcSystem, correct: bool) -> tuple[np.ndarray, np.nd
         return q, qd, None
     iterations = system.module.correct(q, qd, 0.0, system.data.par, system.data.functs, POSITION_TOLERANCE)
     if iterations < 0:
-        raise ModelError(f"the initial-condition correction did not converge in 50 Newton iterations "
-                         f"(constraints not satisfiable near the given coordinates)", system.model.folder)
+        raise ModelError("the initial-condition correction did not converge in 50 Newton iterations "
+                         "(constraints not satisfiable near the given coordinates)", system.model.folder)
     return q, qd, Correction(system.q0.copy(), system.qd0.copy(), q.copy(), qd.copy(), iterations)
 
 
