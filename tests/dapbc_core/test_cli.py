@@ -53,3 +53,19 @@ def test_an_in_file_error_names_file_and_line(sp):
     result = CliRunner().invoke(app, ["run", str(sp), "--final-time", "1", "--report-step", "0.1", "--correct-ic"])
     assert result.exit_code == 2
     assert "inJoints.m:" in result.output and "Traceback" not in result.output
+
+
+def test_on_a_terminal_a_missing_flag_is_asked_for_as_dap_asks(monkeypatch):
+    """dap's questions (manual Sec. B.1.1); an answer that is not understood is asked again."""
+    from rich.console import Console
+
+    from mbds.cli.dapbc_run import _yes_no, ask
+
+    console = Console(force_terminal=True, record=True)
+    answers = iter(["maybe", "y"])
+    asked = []
+    monkeypatch.setattr(console, "input", lambda prompt: asked.append(prompt) or next(answers))
+    question = "Do you want to correct the initial conditions? [(y)es/(n)o]"
+    assert ask(console, None, question, _yes_no, "--correct-ic") is True
+    assert asked == [question + "\t"] * 2
+    assert ask(console, 4.0, "Final time = ?", float, "--final-time") == 4.0

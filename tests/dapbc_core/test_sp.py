@@ -52,3 +52,9 @@ def test_unknown_analysis_and_bad_settings():
         dapbc.simulate(SP, analysis="dynamic", final_time=1.0, report_step=0.5)
     with pytest.raises(dapbc.ModelError, match="report step"):
         dapbc.simulate(SP, final_time=1.0, report_step=2.0)
+
+
+def test_runs_are_bit_identical():
+    first, second = (dapbc.simulate(SP, final_time=1.0, report_step=0.05) for _ in range(2))
+    for name in ("r", "p", "rdd", "Lam", "eng"):
+        assert np.array_equal(first[name].values, second[name].values)
