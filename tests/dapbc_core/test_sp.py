@@ -58,3 +58,22 @@ def test_runs_are_bit_identical():
     first, second = (dapbc.simulate(SP, final_time=1.0, report_step=0.05) for _ in range(2))
     for name in ("r", "p", "rdd", "Lam", "eng"):
         assert np.array_equal(first[name].values, second[name].values)
+
+
+def test_a_changed_field_reuses_the_compiled_module():
+    """What a campaign varies (force.1.k = 40): the element field changes through
+    set_field_value, the system is built again with the same compiled module (its source depends
+    on the model's structure only) and the new stiffness in its parameters, and the motion changes."""
+    from mbds.io.dapbc.fields import set_field_value
+    from mbds.io.dapbc.records import SourcePos
+    from mbds.model.dapbc import build_system
+
+    system = dapbc.load(SP)
+    model = system.model
+    set_field_value(model.forces[0], "k", 40.0, SourcePos("campaign.job", 3))
+    stiffer = build_system(model)
+    assert stiffer.module is system.module
+    assert stiffer.data.par[system.parameter_labels.index("force 1 k")] == 40.0
+    settings = dapbc.DapbcSettings(1.0, 0.1)
+    before, after = (dapbc.analyse(s, "forward", settings)[1] for s in (system, stiffer))
+    assert not np.allclose(before["r"].values, after["r"].values)
