@@ -60,24 +60,42 @@ def check(
 
 @app.command()
 def run(
-    path: Path = typer.Argument(..., help="A version folder (campaigns/2mass/000) or a model folder."),
+    path: Path = typer.Argument(..., help="A version folder (campaigns/2mass/000), a model folder, or a DAP_BC model folder (with inBodies.m)."),
     break_time: float = typer.Option(None, "--break-time", help="Length of the run (s); default: breakTime."),
     start_from: int = typer.Option(None, "--from", help="Start where this version's run ended (e.g. 000)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the randomized lexicographic tolerances."),
     force: bool = typer.Option(False, "--force", help="Replace a complete run, or version 000's copies of model files that changed."),
+    final_time: float = typer.Option(None, "--final-time", help="DAP_BC: final time T (s); asked for on a terminal."),
+    report_step: float = typer.Option(None, "--report-step", help="DAP_BC: reporting time step DT (s); asked for on a terminal."),
+    correct_ic: bool = typer.Option(None, "--correct-ic/--no-correct-ic", help="DAP_BC: correct the initial conditions; asked for on a terminal."),
+    analysis: str = typer.Option(None, "--analysis", help="DAP_BC: forward (default), kinematic, inverse or static."),
+    method: str = typer.Option("dopri5", "--method", help="DAP_BC forward dynamics: dopri5 (as ode45) or stiff."),
+    rtol: float = typer.Option(1e-6, "--rtol", help="DAP_BC forward dynamics: relative tolerance (ode45's RelTol)."),
+    atol: float = typer.Option(1e-9, "--atol", help="DAP_BC forward dynamics: absolute tolerance (ode45's AbsTol)."),
+    projection: bool = typer.Option(True, "--projection/--no-projection", help="DAP_BC forward dynamics: project each step onto the constraints (off: DAP_BC's algorithm exactly)."),
     debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
 ) -> None:
-    """Run one version of a model and write its outputs into the version folder.
+    """Run one version of a model and write its outputs into the version folder; or run a
+    DAP_BC model folder and write FOLDER/000/history.nc (docs/dapbc.md).
 
     Exit codes: 0 break time reached, 1 stopped early (maxLinesInLog, state not finite),
     2 bad input, 130 interrupted by Ctrl-C (outputs written, marked incomplete).
     """
+    from mbds.io.dapbc import is_dapbc_folder
+
+    console = _console()
+    if is_dapbc_folder(path):
+        from mbds.cli.dapbc_run import dapbc_run_command
+
+        with reported_errors(debug):
+            code = dapbc_run_command(path, analysis, final_time, report_step, correct_ic, method, rtol, atol,
+                                     projection, console)
+        raise typer.Exit(code)
     from mbds.cli.run import run_command
     from mbds.simulation.version_run import RunOptions
 
     if break_time is not None and not break_time > 0:
         raise typer.BadParameter("must be a positive time (s)", param_hint="--break-time")
-    console = _console()
     with reported_errors(debug):
         code = run_command(path, RunOptions(break_time, seed, start_from), console, force)
     raise typer.Exit(code)

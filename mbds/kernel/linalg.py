@@ -62,3 +62,62 @@ def cholesky_solve_row(L, B, i, X):
         for k in range(r + 1, n):
             s -= L[k, r] * X[i, k]
         X[i, r] = s / L[r, r]
+
+
+@jit
+def lu_solve(A, b):
+    """x = A^-1 b by Gaussian elimination with partial pivoting (A (n, n) and b (n,) are not
+    changed).  Returns (x, ok); ok is False when a pivot is zero or not finite (A singular)."""
+    n = A.shape[0]
+    M = A.copy()
+    x = b.copy()
+    for k in range(n):
+        pivot = k
+        for i in range(k + 1, n):
+            if abs(M[i, k]) > abs(M[pivot, k]):
+                pivot = i
+        if not (abs(M[pivot, k]) > 0.0 and np.isfinite(M[pivot, k])):
+            return x, False
+        if pivot != k:
+            for j in range(k, n):
+                M[k, j], M[pivot, j] = M[pivot, j], M[k, j]
+            x[k], x[pivot] = x[pivot], x[k]
+        for i in range(k + 1, n):
+            factor = M[i, k] / M[k, k]
+            if factor != 0.0:
+                for j in range(k + 1, n):
+                    M[i, j] -= factor * M[k, j]
+                x[i] -= factor * x[k]
+    for i in range(n - 1, -1, -1):
+        s = x[i]
+        for j in range(i + 1, n):
+            s -= M[i, j] * x[j]
+        x[i] = s / M[i, i]
+    return x, True
+
+
+@jit
+def gram(D):
+    """D D^T of D (m, n), without BLAS (whose addresses would keep numba from caching)."""
+    m, n = D.shape
+    G = np.zeros((m, m))
+    for i in range(m):
+        for k in range(m):
+            s = 0.0
+            for j in range(n):
+                s += D[i, j] * D[k, j]
+            G[i, k] = s
+    return G
+
+
+@jit
+def min_norm_solve(D, b):
+    """The least-norm x with D x = b for D (m, n) of full row rank: x = D^T (D D^T)^-1 b.
+    Returns (x, ok); ok is False when D D^T is singular (redundant rows)."""
+    m, n = D.shape
+    y, ok = lu_solve(gram(D), b)
+    x = np.zeros(n)
+    for i in range(m):
+        for j in range(n):
+            x[j] += D[i, j] * y[i]
+    return x, ok
