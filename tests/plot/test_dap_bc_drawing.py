@@ -5,6 +5,7 @@ checked against the history's r, p and rP."""
 import matplotlib.image
 import numpy as np
 import pytest
+import xarray as xr
 from matplotlib.colors import to_rgba
 from PIL import Image
 from typer.testing import CliRunner
@@ -12,6 +13,7 @@ from typer.testing import CliRunner
 from mbds import dapbc, plot
 from mbds.analysis.dapbc import DapbcSettings
 from mbds.cli.main import app
+from mbds.data.dapbc_drawing import drawing_variables
 from mbds.errors import ModelError
 from mbds.io.dapbc import read_dapbc_folder
 from mbds.plot.motion import frame_samples
@@ -156,3 +158,30 @@ def test_a_colour_that_is_not_matlabs_is_reported_at_its_line(tmp_path):
     with pytest.raises(ModelError, match="unknown 'orange'") as info:
         read_dapbc_folder(sp)
     assert info.value.file.endswith("inAnimate.m") and info.value.line == 10
+
+
+def test_links_and_limits_without_a_window(runs):
+    """A rev-rev joint is drawn as a line between its points (anim: cyan); without inAnimate's
+    window the axes hold everything drawn."""
+    ds = runs[0]["SP"]
+    linked = ds.assign(joint_type=("joint", ["tran", "rev-rev"]))
+    linked.attrs = {k: v for k, v in ds.attrs.items() if not k.startswith("animation_")}
+    ax = plot.shapes(linked, time=0.2)
+    index = int(np.abs(ds["time"].values - 0.2).argmin())
+    (link,) = artist(ax, "links").get_segments()
+    np.testing.assert_allclose(link, ds["rP"].values[index, [1, 2]], atol=1e-12)
+    drawn = np.vstack([np.column_stack(artist(ax, "points").get_data()), *(p.get_xy() for p in ax.patches)])
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x0 < drawn[:, 0].min() and drawn[:, 0].max() < x1 and y0 < drawn[:, 1].min() and drawn[:, 1].max() < y1
+    assert ax.get_xlim() != (-0.5, 2.0)
+
+
+@pytest.mark.parametrize("name", ["Rod", "AA"])
+def test_models_without_joints_or_shapes_write_their_drawing(tmp_path, name):
+    """Rod has no joints, AA no shapes: the description still goes through NetCDF."""
+    data, coords, attrs = drawing_variables(read_dapbc_folder(copy_example(f"dap_bc/{name}", tmp_path / name)))
+    xr.Dataset(data, coords=coords, attrs=attrs).to_netcdf(tmp_path / "drawing.nc", engine="netcdf4")
+    with xr.open_dataset(tmp_path / "drawing.nc") as ds:
+        assert ds.sizes["joint"] == (0 if name == "Rod" else 4)
+        assert set(ds["body_shape"].values) == ({"line"} if name == "Rod" else {"none"})
+        assert ds.attrs["animation_xmax"] == (1.5 if name == "Rod" else 0.9)
