@@ -3,8 +3,8 @@
     python docs/make_figures.py            # writes docs/figures/*.png (a few minutes)
 
 Runs copies of campaigns/wearballs (its job: versions 000-013), campaigns/woodpecker (0.3 s),
-campaigns/2mass (its job file's break time) and the 2mass campaign in a temporary folder, then
-draws them with mbds.plot.
+campaigns/2mass (its job file's break time), the 2mass campaign and the DAP_BC models
+campaigns/dap_bc/SP and Cart_A in a temporary folder, then draws them with mbds.plot.
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ import tempfile
 from pathlib import Path
 
 import matplotlib
+from matplotlib.figure import Figure
 
 matplotlib.use("Agg")
 
@@ -42,6 +43,18 @@ def command(application, *args) -> None:
     except SystemExit as exc:
         if exc.code:
             sys.exit(f"{' '.join(map(str, args))} failed ({exc.code})")
+
+
+def dap_bc_figure(work: Path) -> None:
+    """SP (manual Example B.1, 4 s) at t = 1.3 s and Cart_A (2 s) at t = 1 s, as DAP_BC's anim draws them."""
+    figure = Figure(figsize=(11, 3.6), layout="constrained")
+    panels = figure.subplots(1, 2, width_ratios=[2.5, 3.2])
+    for ax, name, final, step, time in zip(panels, ("SP", "Cart_A"), (4, 2), (0.02, 0.01), (1.3, 1.0)):
+        folder = copy(f"dap_bc/{name}", work)
+        command(app, "run", folder, "--final-time", final, "--report-step", step, "--correct-ic")
+        with plot.open_run(folder) as run:
+            plot.shapes(run, time=time, ax=ax)
+    plot.save(figure, FIGURES / "dap_bc_shapes.png")
 
 
 def main() -> None:
@@ -72,6 +85,7 @@ def main() -> None:
         with mbds.open_campaign(two_mass / "campaign") as tree:
             plot.save(plot.campaign_summary(tree), FIGURES / "2mass_campaign_summary.png")
             plot.save(plot.wear(tree, "mass1"), FIGURES / "2mass_campaign_wear.png")
+        dap_bc_figure(work)
     for path in sorted(FIGURES.glob("*.png")):
         print(f"wrote {path.relative_to(DOCS.parent)}")
 

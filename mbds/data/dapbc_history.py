@@ -12,6 +12,7 @@ import xarray as xr
 
 from mbds import __version__
 from mbds.analysis.dapbc import DapbcResult, DapbcSettings
+from mbds.data.dapbc_drawing import drawing_variables
 from mbds.io.text import atomic_path
 from mbds.model.dapbc.system import DapbcSystem
 
@@ -81,7 +82,8 @@ def dapbc_dataset(system: DapbcSystem, result: DapbcResult, settings: DapbcSetti
         "input_files": " ".join(sorted(p.name for p in _inputs(system))),
     }
     attrs.update({f"input_{p.name}": p.read_text(encoding="utf-8") for p in _inputs(system)})
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    drawing = drawing_variables(system.model)
+    return xr.Dataset({**data, **drawing[0]}, coords={**coords, **drawing[1]}, attrs={**attrs, **drawing[2]})
 
 
 def _inputs(system: DapbcSystem) -> list[Path]:

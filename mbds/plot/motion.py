@@ -9,17 +9,9 @@ from matplotlib.axes import Axes
 
 from mbds.errors import ModelError
 from mbds.plot.bodies import BodyOutlines, frame_axes
+from mbds.plot.dapbc_bodies import DapbcBodies
 from mbds.plot.figure import new_axes
 from mbds.plot.source import run_kind, run_title
-
-
-def body_drawer(ds: xr.Dataset) -> BodyOutlines:
-    """The drawer of the run's bodies for its kind (see :data:`mbds.plot.source.KINDS`)."""
-    kind = run_kind(ds)
-    if kind != "mbds":
-        raise ModelError(f"drawing the bodies of a {kind} run is not available; its series are "
-                         "(mbds plot energy / multipliers)")
-    return BodyOutlines(ds)
 
 
 def sample_at(ds: xr.Dataset, time: float | None) -> int:
@@ -37,13 +29,19 @@ def shapes(run: xr.Dataset, time: float | None = None, ax: Axes | None = None,
     """The bodies in their world pose at the sample nearest ``time`` (s; default: the run's end):
     moving bodies filled in their RGBColor, fixed bodies hatched, virtual bodies dashed. The
     polygons are ``ax.patches`` (label: body name, gid: kind). ``limits``: (xmin, xmax, ymin,
-    ymax) in m; by default around the moving bodies. Returns the axes."""
+    ymax) in m; by default around the moving bodies. A dap_bc run is drawn as DAP_BC's anim
+    draws it (:meth:`mbds.plot.dapbc_bodies.DapbcBodies.draw`), by default in inAnimate's
+    limits. Returns the axes."""
     ax = ax or new_axes()
-    drawer = body_drawer(run)
     index = sample_at(run, time)
-    patches = drawer.draw(ax, drawer.poses(index))
-    polygons = [p.get_xy() for p in patches]
-    frame_axes(ax, polygons, around=drawer.moving(polygons), limits=limits)
+    if run_kind(run) == "dap_bc":
+        drawer = DapbcBodies(run)
+        drawer.draw(ax, drawer.poses(index), limits)
+    else:
+        drawer = BodyOutlines(run)
+        patches = drawer.draw(ax, drawer.poses(index))
+        polygons = [p.get_xy() for p in patches]
+        frame_axes(ax, polygons, around=drawer.moving(polygons), limits=limits)
     ax.set_title(f"{run_title(run)}, t = {float(run['time'][index]):.4g} s")
     return ax
 
@@ -67,29 +65,54 @@ def animate(run: xr.Dataset, fps: float = 30, speed: float = 1.0, contacts: bool
     run per second of video, a time label, and (``contacts``) each watch's point marked and its
     impulse since the last frame drawn as an arrow (``scale`` m per N s; default: the largest
     arrow a fifth of the view); ``limits`` as for :func:`shapes`, by default around the moving
-    bodies over the whole run. Save it with :func:`mbds.plot.save`."""
+    bodies over the whole run (a dap_bc run: inAnimate's limits, as DAP_BC's anim). Save it with
+    :func:`mbds.plot.save`."""
     ax = ax or new_axes()
-    drawer = body_drawer(run)
     index = frame_samples(run, fps, speed)
-    poses = drawer.poses(index)
-    patches = drawer.draw(ax, poses[0])
-    extent = [p for pose in poses[:: max(len(poses) // 50, 1)] for p in drawer.world(pose)] + drawer.world(poses[-1])
-    frame_axes(ax, extent, around=drawer.moving(extent), limits=limits)
+    if run_kind(run) == "dap_bc":
+        move = _dapbc_frames(ax, run, index, limits)
+    else:
+        move = _mbds_frames(ax, run, index, contacts, scale, limits)
     ax.set_title(run_title(run))
     clock = ax.text(0.02, 0.96, "", transform=ax.transAxes, va="top")
-    arrows = _ContactArrows(ax, run, drawer, index, scale) if contacts and run.sizes.get("watch", 0) else None
     times = run["time"].values[index]
 
     def update(frame: int):
-        for patch, polygon in zip(patches, drawer.world(poses[frame])):
-            patch.set_xy(polygon)
         clock.set_text(f"t = {times[frame]:.3f} s")
-        return patches + [clock] + (arrows.update(frame, poses[frame]) if arrows else [])
+        return move(frame) + [clock]
 
     update(0)
     ax.figure.draw_without_rendering()  # lay the figure out once, not at every frame
     ax.figure.set_layout_engine("none")
     return FuncAnimation(ax.figure, update, frames=len(index), interval=1000 / fps, blit=False)
+
+
+def _mbds_frames(ax: Axes, run: xr.Dataset, index: np.ndarray, contacts: bool, scale: float | None,
+                 limits: tuple[float, float, float, float] | None):
+    """Draw an MBDS run's bodies (and watches) at the first of the samples ``index``; the
+    function that moves them to a frame and returns the artists moved."""
+    drawer = BodyOutlines(run)
+    poses = drawer.poses(index)
+    patches = drawer.draw(ax, poses[0])
+    extent = [p for pose in poses[:: max(len(poses) // 50, 1)] for p in drawer.world(pose)] + drawer.world(poses[-1])
+    frame_axes(ax, extent, around=drawer.moving(extent), limits=limits)
+    arrows = _ContactArrows(ax, run, drawer, index, scale) if contacts and run.sizes.get("watch", 0) else None
+
+    def move(frame: int) -> list:
+        for patch, polygon in zip(patches, drawer.world(poses[frame])):
+            patch.set_xy(polygon)
+        return patches + (arrows.update(frame, poses[frame]) if arrows else [])
+
+    return move
+
+
+def _dapbc_frames(ax: Axes, run: xr.Dataset, index: np.ndarray, limits: tuple[float, float, float, float] | None):
+    """Draw a dap_bc run at the first of the samples ``index`` (in inAnimate's limits, else
+    around the whole run); the function that moves it to a frame."""
+    drawer = DapbcBodies(run)
+    poses = drawer.poses(index)
+    drawer.draw(ax, poses.at(0), limits, extent=drawer.extent(poses))
+    return lambda frame: drawer.update(poses.at(frame))
 
 
 class _ContactArrows:

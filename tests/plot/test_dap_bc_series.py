@@ -37,8 +37,6 @@ def test_coordinates_multipliers_and_energy_of_a_dap_bc_run(dap_bc):
     assert "model pendulum" in ax.get_title()
 
 
-def test_bodies_of_a_dap_bc_run_are_not_drawn_yet(dap_bc):
-    with pytest.raises(ModelError, match="drawing the bodies of a dap_bc run is not available"):
-        plot.shapes(dap_bc)
+def test_an_unknown_kind_of_run_is_named(dap_bc):
     with pytest.raises(ModelError, match="unknown kind of run 'adams'"):
         plot.energy(dap_bc.assign_attrs(kind="adams"))

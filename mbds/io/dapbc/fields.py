@@ -14,8 +14,13 @@ FORCE_TYPES = ("ptp", "rot-sda", "weight", "flocal", "f", "T", "user")
 JOINT_TYPES = ("rev", "tran", "rev-rev", "rev-tran", "rigid", "disc", "rel-rot", "rel-tran")
 FUNCT_TYPES = ("a", "b", "c")
 SHAPES = ("", " ", "circle", "rect", "line")
+COLORS = {"y": "#ffff00", "m": "#ff00ff", "c": "#00ffff", "r": "#ff0000", "g": "#00ff00", "b": "#0000ff",
+          "w": "#ffffff", "k": "#000000", "yellow": "#ffff00", "magenta": "#ff00ff", "cyan": "#00ffff",
+          "red": "#ff0000", "green": "#00ff00", "blue": "#0000ff", "white": "#ffffff", "black": "#000000"}
+"""MATLAB's eight predefined colours (short and long names) as RGB hex codes (MathWorks,
+"ColorSpec (Color Specification)", MATLAB R2021a documentation): a body's ``color``."""
 _CHOICES = {(Force, "type"): FORCE_TYPES, (Joint, "type"): JOINT_TYPES,
-            (Funct, "type"): FUNCT_TYPES, ("Body", "shape"): SHAPES}
+            (Funct, "type"): FUNCT_TYPES, ("Body", "shape"): SHAPES, ("Body", "color"): tuple(COLORS)}
 
 
 def field_kind(record: Element, name: str) -> str:
