@@ -49,6 +49,11 @@ class Parameter:
     texts: tuple[str, ...]
     line: int | None
 
+    @property
+    def target(self) -> tuple:
+        """What the key changes: two keys with one target are one key given twice."""
+        return self.kind, self.section, self.name
+
 
 @dataclass(frozen=True)
 class Variant:
