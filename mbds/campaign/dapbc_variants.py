@@ -120,12 +120,15 @@ def parse_dapbc_parameter(key: str, text: str, line: int | None, model: DapbcMod
     parameter = DapbcParameter(key, ELEMENT, word, name, (), texts, line, index, component)
     values = []
     for item in texts:
-        value = _plain(evaluate(item, path, line))
-        if value is None:
-            raise ModelError(f"'{key}' value '{item}' is not a number or a vector", path, line)
-        set_element(record.copy(), parameter, value, path)
-        if (word, name) in POSITIVE_FIELDS and not value > 0:
-            raise ModelError(f"'{key}' value '{item}': {name} must be positive", path, line)
+        try:
+            value = _plain(evaluate(item, path, line))
+            if value is None:
+                raise ModelError("not a number or a vector", path, line)
+            set_element(record.copy(), parameter, value, path)
+            if (word, name) in POSITIVE_FIELDS and not value > 0:
+                raise ModelError(f"{name} must be positive", path, line)
+        except ModelError as exc:
+            raise ModelError(f"'{key}' value '{item}': {exc.message}", path, line) from None
         values.append(value)
     return dataclasses.replace(parameter, values=tuple(values))
 
