@@ -26,7 +26,7 @@ from mbds.campaign.section import parse_campaign
 from mbds.campaign.variants import product, variant_count
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.dapbc import read_dapbc_folder
-from mbds.io.dapbc.job import read_dapbc_job
+from mbds.io.dapbc_job import read_dapbc_job
 from mbds.io.folder import version_name
 
 

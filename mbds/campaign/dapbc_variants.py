@@ -31,7 +31,7 @@ from mbds.campaign.variants import Parameter, Variant, product
 from mbds.errors import ModelError
 from mbds.io.dapbc.fields import did_you_mean, field_kind, set_field, set_field_value, unknown_field
 from mbds.io.dapbc.interpreter import InFile
-from mbds.io.dapbc.job import MODEL_FOLDER, DapbcJob, DapbcJobSettings
+from mbds.io.dapbc_job import MODEL_FOLDER, DapbcJob, DapbcJobSettings
 from mbds.io.dapbc.parser import parse
 from mbds.io.dapbc.records import DapbcModel, SourcePos
 from mbds.io.text import parse_flag, parse_number

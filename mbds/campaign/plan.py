@@ -42,7 +42,7 @@ from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, Ledger
 from mbds.campaign.section import ENSEMBLE, CampaignSection, parse_campaign
 from mbds.campaign.variants import Variant, check_world_combinations, product, variant_count
 from mbds.errors import ModelError, ModelWarning
-from mbds.io.dapbc.job import is_dapbc_job
+from mbds.io.dapbc_job import is_dapbc_job
 from mbds.io.folder import read_model_files, replicate_name, version_name
 from mbds.io.job import JobFile, read_checked_job
 from mbds.simulation.options import RunOptions
@@ -104,7 +104,7 @@ class Plan:
     """A job file expanded: ``folder`` is the campaign folder (the ledger is there),
     ``campaign`` the ``[campaign]`` section (None without one), ``model`` the kind of model
     (``mbds``, or ``dap_bc`` for a job naming a DAP_BC folder: ``job`` is then a
-    :class:`mbds.io.dapbc.job.DapbcJob`)."""
+    :class:`mbds.io.dapbc_job.DapbcJob`)."""
 
     job: JobFile
     folder: Path

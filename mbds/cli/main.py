@@ -45,7 +45,7 @@ def check(
     from mbds.cli.dapbc_check import check_dapbc
     from mbds.cli.summary import print_summary
     from mbds.io.dapbc import is_dapbc_folder
-    from mbds.io.dapbc.job import is_dapbc_job
+    from mbds.io.dapbc_job import is_dapbc_job
     from mbds.model.load import load_model
 
     console = _console()

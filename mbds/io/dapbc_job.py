@@ -1,15 +1,17 @@
 """Job files that name a DAP_BC model folder (docs/campaigns.md, "DAP_BC models"): ``[main]``
 holds ``modelFolder`` and the run settings of ``mbds run FOLDER`` (final time, report step,
-analysis, ...); ``[campaign]`` the values to vary, read by the campaign layer."""
+analysis, ...); ``[campaign]`` the values to vary, read by the campaign layer. Outside the
+package :mod:`mbds.io.dapbc`, whose import costs a second, so that any job file can be asked
+whether it is one quickly."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from mbds.errors import ModelError, warn
-from mbds.io.dapbc.reader import is_dapbc_folder
-from mbds.io.ini import Located, find_section, parse_ini, read_settings, setting
+from mbds.errors import ModelError
+from mbds.io.ini import find_section, parse_ini, read_settings, setting
+from mbds.io.job import job_sections
 from mbds.io.text import read_text
 
 MODEL_FOLDER = "modelFolder"
@@ -66,27 +68,12 @@ def is_dapbc_job(path: str | Path) -> bool:
 def read_dapbc_job(path: str | Path) -> DapbcJob:
     """The DAP_BC job file at ``path``, its model folder checked to be a DAP_BC folder; the
     run settings are checked where they are used (mbds.campaign.dapbc)."""
+    from mbds.io.dapbc.reader import is_dapbc_folder
+
     path = Path(path)
-    sections = parse_ini(read_text(path), path)
-    seen: dict[str, int] = {}
-    for s in sections:
-        if s.name.lower() in seen:
-            raise ModelError(f"section [{s.name}] given twice (first on line {seen[s.name.lower()]})", path, s.line)
-        seen[s.name.lower()] = s.line
-    main = find_section(sections, "main")
-    if main is None:
-        raise ModelError("no [main] section", path, 1)
-    settings = read_settings(DapbcJobSettings, main, path)
-    lines = {"[main]": main.line, **{e.key.lower(): e.line for e in main.entries}}
-    job = DapbcJob(settings, {}, path, lines)
-    folder = job.model_folder()
-    if not settings.model_folder.strip() or not is_dapbc_folder(folder):
-        raise ModelError(f"{MODEL_FOLDER} = {settings.model_folder.strip()} is not a DAP_BC model folder "
+    main, lines, extra = job_sections(read_text(path), path)
+    job = DapbcJob(read_settings(DapbcJobSettings, main, path), extra, path, lines)
+    if not job.settings.model_folder.strip() or not is_dapbc_folder(job.model_folder()):
+        raise ModelError(f"{MODEL_FOLDER} = {job.settings.model_folder.strip()} is not a DAP_BC model folder "
                          "(a folder with inBodies.m)", path, job.line(MODEL_FOLDER))
-    for s in sections:
-        if s.name.lower() == "main":
-            continue
-        if s.name.lower() != "campaign":
-            warn(f"unknown section [{s.name}] (ignored)", path, s.line)
-        job.extra_sections[s.name] = [(e.key, Located(e.value, e.line)) for e in s.entries]
     return job
