@@ -131,6 +131,8 @@ def test_the_collected_campaign(sequential):
     assert np.array_equal(summary["end_r"].sel(variant="v01").values, run["r"].values[-1])
     ledger = Ledger.read(expand(job).folder)
     assert {e["compiled"] for e in ledger.tasks.values()} == {0}  # the warm-up compiled everything
+    code, _, err = campaign("plot", job)
+    assert code == 2 and "draws wear campaigns" in err
 
 
 def test_period_scales_with_the_square_root_of_mass_over_stiffness(sequential):
