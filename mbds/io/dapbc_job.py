@@ -76,4 +76,7 @@ def read_dapbc_job(path: str | Path) -> DapbcJob:
     if not job.settings.model_folder.strip() or not is_dapbc_folder(job.model_folder()):
         raise ModelError(f"{MODEL_FOLDER} = {job.settings.model_folder.strip()} is not a DAP_BC model folder "
                          "(a folder with inBodies.m)", path, job.line(MODEL_FOLDER))
+    for key, what in (("finalTime", "the final time T"), ("reportStep", "the report step DT")):
+        if key.lower() not in lines:
+            raise ModelError(f"{key} is missing: {what} in s", path, job.line(key))
     return job

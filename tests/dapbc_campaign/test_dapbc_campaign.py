@@ -99,10 +99,15 @@ def test_bad_input_is_reported_at_its_line_with_exit_code_2(tmp_path, line, mess
     assert result.exit_code == 2 and message in result.stderr
 
 
-def test_a_job_naming_no_dapbc_folder(tmp_path):
-    job = sweep_job(tmp_path, MAIN.replace("= oscillator", "= elsewhere") + TWO)
+@pytest.mark.parametrize("change, where", [
+    (("= oscillator", "= elsewhere"), "2: modelFolder = elsewhere is not a DAP_BC model folder"),
+    (("finalTime = 3\n", ""), "1: finalTime is missing"),
+    (("rtol = 1e-9", "rtol = fast"), "5: 'fast' is not a number"),
+])
+def test_errors_of_the_main_section(tmp_path, change, where):
+    job = sweep_job(tmp_path, MAIN.replace(*change) + TWO)
     code, _, err = campaign("status", job)
-    assert code == 2 and f"{job}:2: modelFolder = elsewhere is not a DAP_BC model folder" in err
+    assert code == 2 and f"{job}:{where}" in err, err
 
 
 def test_mbds_check_accepts_the_example():
