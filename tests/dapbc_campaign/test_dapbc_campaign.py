@@ -187,3 +187,30 @@ def test_two_mpi_ranks_give_bit_identical_results(sequential, tmp_path):
         for name, variable in node.ds.data_vars.items():
             if name != "wall":
                 assert np.array_equal(variable.values, tree[node.path].ds[name].values), (node.path, name)
+
+
+@pytest.mark.parametrize("folder", [SWEEP / "oscillator", ROOT / "campaigns" / "dap_bc" / "SP"])
+def test_a_variant_takes_its_numbers_without_building_the_equations_again(folder):
+    """with_numbers (what a campaign task uses) gives the kernel data, initial coordinates and
+    module that a full build gives, with every number of every element changed."""
+    from mbds.io.dapbc.fields import field_kind
+    from mbds.model.dapbc.renumber import same_structure, with_numbers
+
+    base = build_system(read_dapbc_folder(folder))
+    model = read_dapbc_folder(folder)
+    rng = np.random.default_rng(7)
+    for kind in ("bodies", "points", "uvectors", "forces", "joints", "functs"):
+        for element in getattr(model, kind):
+            for name in element.field_names():
+                kind = field_kind(element, name)
+                if kind == "num":
+                    setattr(element, name, getattr(element, name) * (1 + 0.1 * rng.random()))
+                elif kind in ("vec2", "vector"):
+                    value = getattr(element, name)
+                    setattr(element, name, value * (1 + 0.1 * rng.random(value.shape)))
+    assert same_structure(base.model, model)
+    fast, full = with_numbers(base, model), build_system(model)
+    assert full.module is base.module is fast.module
+    assert all(np.array_equal(a, b) for a, b in zip(fast.data, full.data))
+    assert np.array_equal(fast.q0, full.q0) and np.array_equal(fast.qd0, full.qd0)
+    assert not np.array_equal(fast.data.par, base.data.par)
