@@ -56,7 +56,7 @@ def expand_dapbc(job_path: Path) -> Plan:
         raise ModelError(f"the plan has {count:,} tasks (one per variant), more than maxTasks = "
                          f"{campaign.max_tasks:,}; vary fewer values, or raise maxTasks in [campaign] if you mean it",
                          job.path, campaign.line)
-    check_run_settings(job, parameters)
+    check_run_settings(job, parameters, links)
     variants = product(parameters, links)
     folder = job.path.parent / (campaign.folder if campaign else "campaign")
     chains = [Chain(v.id, f"{folder}/{v.id}", v, None, 0) for v in variants]

@@ -27,7 +27,7 @@ import numpy as np
 
 from mbds.analysis.dapbc import METHODS, DapbcSettings
 from mbds.campaign.section import VariedKeys
-from mbds.campaign.variants import Parameter, Variant, product
+from mbds.campaign.variants import Parameter, Variant, kind_product
 from mbds.errors import ModelError
 from mbds.io.dapbc.fields import did_you_mean, field_kind, set_field, set_field_value, unknown_field
 from mbds.io.dapbc.interpreter import InFile
@@ -165,13 +165,14 @@ def run_settings(job: DapbcJob, variant: Variant | None) -> tuple[str, DapbcSett
                                             settings.method, settings.rtol, settings.atol, settings.projection)
 
 
-def check_run_settings(job: DapbcJob, parameters: tuple[Parameter, ...]) -> None:
-    """Every combination of the varied run settings, with the job's own, makes valid settings;
-    ModelError at the line of the first varied run key (or of ``[main]``) otherwise."""
+def check_run_settings(job: DapbcJob, parameters: tuple[Parameter, ...], links: tuple[tuple[int, ...], ...]) -> None:
+    """Every combination of the varied run settings that a variant has (``links``: the ``zip``
+    groups), with the job's own settings, makes valid settings; ModelError at the line of the
+    first varied run key (or of ``[main]``) otherwise."""
     from mbds.analysis import analysis
 
     varied = tuple(p for p in parameters if p.kind == RUN_SETTING)
-    for variant in product(varied) if varied else [None]:
+    for variant in kind_product(parameters, links, RUN_SETTING) or [None]:
         try:
             name, _ = run_settings(job, variant)
             analysis(name)

@@ -63,6 +63,15 @@ def test_run_settings_and_element_values_are_read_as_in_the_in_files(tmp_path):
     assert model.bodies[0].p == pytest.approx(np.pi / 6) and list(model.bodies[0].r) == [0.7, 0.0]
 
 
+def test_zipped_run_settings_are_checked_as_the_variants_have_them(tmp_path):
+    """finalTime 1 with reportStep 0.5, and 0.01 with 0.005: valid together, not crossed."""
+    zipped = "[campaign]\nrun.finalTime = 1, 0.01\nrun.reportStep = 0.5, 0.005\nzip = run.finalTime, run.reportStep\n"
+    plan = expand(sweep_job(tmp_path, MAIN + zipped))
+    assert [t.options.settings.report_step for t in plan.tasks] == [0.5, 0.005]
+    with pytest.raises(ModelError, match="report step must be positive and at most the final time"):
+        expand(sweep_job(tmp_path, MAIN + zipped.replace("zip =", "% zip =")))
+
+
 def test_a_varied_field_reuses_the_compiled_module(tmp_path):
     """The variants differ in parameters only: rebuilding with a variant's values loads the
     module the base model compiled, with the new stiffness among its parameters."""
