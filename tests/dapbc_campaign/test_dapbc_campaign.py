@@ -50,6 +50,13 @@ def test_the_example_plans_one_run_per_variant():
     assert plan.tasks[3].folder == plan.folder / "v03" / "000"
 
 
+def test_the_sliding_pendulum_sweep_plans_twelve_runs_of_the_manuals_model():
+    plan = expand(SWEEP / "sp_sweep.job")
+    assert len(plan.tasks) == 12 and plan.job.model_folder().resolve() == (ROOT / "campaigns" / "dap_bc" / "SP")
+    assert plan.variants[2].values == {"force.1.k": "20", "body.2.m": "2", "body.2.p": "pi/6"}
+    assert plan.campaign.parameters[2].values == (np.pi / 6, np.pi / 4)
+
+
 def test_run_settings_and_element_values_are_read_as_in_the_in_files(tmp_path):
     text = (MAIN + "[campaign]\nbody.1.p = 0, pi/6\nbody.1.r = [0.6; 0], [0.7; 0]\nrun.rtol = 1e-6, 1e-8\n"
             "run.analysis = forward, static\nzip = run.rtol, run.analysis\n")
