@@ -38,7 +38,7 @@ import xarray as xr
 
 from mbds import __version__
 from mbds.campaign.ledger import DONE, Ledger
-from mbds.campaign.plan import RUN, Plan, Task
+from mbds.campaign.plan import DAP_BC, RUN_KINDS, Plan, Task
 from mbds.campaign.replicates import identical_replicates
 from mbds.campaign.section import ENSEMBLE
 from mbds.data.history import FILE_NAME as HISTORY
@@ -60,19 +60,23 @@ def collect(plan: Plan) -> Path:
     the histories themselves stay in the run files."""
     ledger = Ledger.read(plan.folder)
     ledger.check(plan)
-    runs = [t for t in plan.tasks if t.kind == RUN]
+    runs = [t for t in plan.tasks if t.kind in RUN_KINDS]
+    make_summary, read = summary, SUMMARY_VARIABLES
+    if plan.model == DAP_BC:
+        from mbds.campaign.dapbc_collect import SUMMARY_VARIABLES as read
+        from mbds.campaign.dapbc_collect import dapbc_summary as make_summary
     done = [t for t in runs if ledger.state(t.id) == DONE and (t.folder / HISTORY).is_file()]
     if not done:
         raise ModelError("no run of the campaign is done yet; run it first: mbds-campaign run", plan.job.path)
     histories, references = {}, []
     for task in done:
-        description, times, small = describe(task.folder / HISTORY, read=SUMMARY_VARIABLES)
+        description, times, small = describe(task.folder / HISTORY, read=read)
         histories[task.id] = xr.decode_cf(xr.Dataset(small, attrs=json.loads(description)["attrs"]))
         references.append((node_path(plan, task), (task.folder / HISTORY).relative_to(plan.folder).as_posix(),
                            description, times))
     path = plan.folder / CAMPAIGN_FILE
     with atomic_path(path) as tmp:
-        summary(plan, ledger, runs, histories).to_netcdf(tmp, engine="netcdf4")
+        make_summary(plan, ledger, runs, histories).to_netcdf(tmp, engine="netcdf4")
         with netCDF4.Dataset(tmp, "a") as out:
             write_references(out.createGroup(RUNS_GROUP), references)
     return path

@@ -42,11 +42,16 @@ from mbds.campaign.ledger import BLOCKED, DONE, FAILED, PENDING, Ledger
 from mbds.campaign.section import ENSEMBLE, CampaignSection, parse_campaign
 from mbds.campaign.variants import Variant, check_world_combinations, product, variant_count
 from mbds.errors import ModelError, ModelWarning
+from mbds.io.dapbc_job import is_dapbc_job
 from mbds.io.folder import read_model_files, replicate_name, version_name
 from mbds.io.job import JobFile, read_checked_job
 from mbds.simulation.options import RunOptions
 
 PREPARE, RUN, WEAR = "prepare", "run", "wear"
+MBDS, DAP_BC = "mbds", "dap_bc"
+"""Kinds of model a plan runs (``Plan.model``); ``dap_bc`` is also the kind of a DAP_BC run task."""
+RUN_KINDS = (RUN, DAP_BC)
+"""Task kinds whose result is a run's ``history.nc``."""
 
 
 @dataclass(frozen=True)
@@ -97,7 +102,9 @@ class Task(NamedTuple):
 @dataclass
 class Plan:
     """A job file expanded: ``folder`` is the campaign folder (the ledger is there),
-    ``campaign`` the ``[campaign]`` section (None without one)."""
+    ``campaign`` the ``[campaign]`` section (None without one), ``model`` the kind of model
+    (``mbds``, or ``dap_bc`` for a job naming a DAP_BC folder: ``job`` is then a
+    :class:`mbds.io.dapbc_job.DapbcJob`)."""
 
     job: JobFile
     folder: Path
@@ -105,6 +112,7 @@ class Plan:
     variants: list[Variant]
     chains: list[Chain]
     tasks: list[Task]
+    model: str = MBDS
 
     def task(self, task_id: str) -> Task:
         """The task with id ``task_id`` (KeyError when there is none)."""
@@ -128,6 +136,10 @@ def replicate_seed(seed: int, variant: int, replicate: int) -> int:
 
 def expand(job_path: str | Path) -> Plan:
     """The plan of the job file at ``job_path``; ModelError (``file:line``) on bad input."""
+    if is_dapbc_job(job_path):
+        from mbds.campaign.dapbc_plan import expand_dapbc  # the DAP_BC reader, only for its jobs
+
+        return expand_dapbc(Path(job_path))
     job = read_checked_job(job_path)
     with warnings.catch_warnings():  # the runs repeat the model's warnings when they load it
         warnings.simplefilter("ignore", ModelWarning)

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
-from mbds.campaign.plan import Plan, done_count, ready_tasks
+from mbds.campaign.plan import DAP_BC, Plan, done_count, ready_tasks
 from mbds.campaign.priority import by_remaining_work
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
@@ -70,6 +70,10 @@ def campaign_cache(plan: Plan, private: bool = False) -> None:
 def warm_up(plan: Plan) -> int:
     """Compile (or load from the cache) each distinct model structure of the campaign's variants
     and run its stepper for no time; the number of distinct structures."""
+    if plan.model == DAP_BC:
+        from mbds.campaign.dapbc_plan import warm_up_dapbc
+
+        return warm_up_dapbc(plan)
     base = read_model_files(plan.job.world_path())
     seen = set()
     with warnings.catch_warnings():  # the runs report the model's warnings

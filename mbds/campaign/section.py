@@ -4,7 +4,8 @@ seed, replicates and mode, and the keys whose values make the variants."""
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 from mbds.campaign.variants import Parameter, is_parameter_key, parse_parameter
@@ -14,6 +15,7 @@ from mbds.io.job import JobFile
 from mbds.io.text import parse_integer
 
 CHAINS, ENSEMBLE = "chains", "ensemble"
+_COMMON = ("seed", "replicates", "mode", "folder", "maxTasks", "zip")
 MAX_TASKS = 10**6
 """The most tasks a plan may have unless ``maxTasks`` in ``[campaign]`` says otherwise."""
 
@@ -36,6 +38,25 @@ class CampaignSection:
     links: tuple[tuple[int, ...], ...] = ()
 
 
+@dataclass(frozen=True)
+class VariedKeys:
+    """The keys a ``[campaign]`` section varies for one kind of model: ``accepts(key)`` says
+    whether a key is one, ``parse(key, text, line)`` reads it into a :class:`Parameter` (checked
+    against the model), ``listing`` names them for the unknown-key message, and ``refused`` maps
+    campaign keys that do not apply to this kind of model to the reason."""
+
+    accepts: Callable[[str], bool]
+    parse: Callable[[str, str, int | None], Parameter]
+    listing: str
+    refused: dict[str, str] = field(default_factory=dict)
+
+
+def mbds_keys(files: ModelFiles, job_path: Path) -> VariedKeys:
+    """The varied keys of an MBDS model: constants, world settings and contact laws."""
+    return VariedKeys(is_parameter_key, lambda key, text, line: parse_parameter(key, text, line, files, job_path),
+                      "c'name, world.<key>, contact.<section>.<key>")
+
+
 def _checked_folder(text: str, job_path, line: int | None) -> str:
     """The ``folder`` value: a folder inside the job file's folder (not that folder itself, not
     a version folder's name such as 000, no control characters)."""
@@ -53,26 +74,30 @@ def _checked_folder(text: str, job_path, line: int | None) -> str:
     return text
 
 
-def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
-    """The job's ``[campaign]`` section checked against the model ``files``; None without one."""
+def parse_campaign(job: JobFile, files: ModelFiles | None, varied: VariedKeys | None = None) -> CampaignSection | None:
+    """The job's ``[campaign]`` section checked against the model ``files`` (an MBDS model), or
+    with the ``varied`` keys of another kind of model; None without one."""
     name = next((n for n in job.extra_sections if n.lower() == "campaign"), None)
     if name is None:
         return None
     entries = job.extra_sections[name]
     path = job.path
+    varied = varied or mbds_keys(files, path)
     values: dict = {"line": entries[0][1].line if entries else job.line("jobs")}
     parameters: list[Parameter] = []
     seen: dict = {}  # key (or what a varied key changes) -> line
     zips: list = []  # (key, Located list of the varied keys it links)
     for key, located in entries:
         text, line = located.text, located.line
-        parameter = parse_parameter(key, text, line, files, path) if is_parameter_key(key) else None
-        folded = (parameter.kind, parameter.section, parameter.name) if parameter else key.lower()
+        parameter = varied.parse(key, text, line) if varied.accepts(key) else None
+        folded = parameter.target if parameter else key.lower()
         if folded in seen:
             raise ModelError(f"'{key}' given twice (first on line {seen[folded]})", path, line)
         seen[folded] = line
         if parameter:
             parameters.append(parameter)
+        elif folded in varied.refused:
+            raise ModelError(f"{key}: {varied.refused[folded]}", path, line)
         elif folded in ("seed", "replicates"):
             number = parse_integer(text, path, line)
             if number < (0 if folded == "seed" else 1):
@@ -92,8 +117,8 @@ def parse_campaign(job: JobFile, files: ModelFiles) -> CampaignSection | None:
                 raise ModelError(f"{key} must be 1 or more", path, line)
         else:
             raise ModelError(
-                f"unknown key '{key}' in [campaign] (seed, replicates, mode, folder, maxTasks, zip, c'name, world.<key>, "
-                "contact.<section>.<key>)", path, line)
+                f"unknown key '{key}' in [campaign] ({', '.join(k for k in _COMMON if k.lower() not in varied.refused)}, "
+                f"{varied.listing})", path, line)
     links = tuple(_link(key, located, parameters, path) for key, located in zips)
     linked = [i for group in links for i in group]
     if len(set(linked)) != len(linked):

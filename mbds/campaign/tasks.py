@@ -21,6 +21,10 @@ warm-up filled the cache).
 
 Tasks of one chain must run in plan order (``depends_on``); tasks of different chains, and the
 replicate runs of one version, may run at once in different processes.
+
+Each task kind has its performer, registered with :func:`register_task_kind`: ``prepare``,
+``run`` and ``wear`` here, ``dap_bc`` (a run of a DAP_BC model) in
+:mod:`mbds.campaign.dapbc_tasks`.
 """
 
 from __future__ import annotations
@@ -34,7 +38,7 @@ import numpy as np
 
 from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
-from mbds.campaign.plan import PREPARE, RUN, Task
+from mbds.campaign.plan import PREPARE, RUN, WEAR, Task
 from mbds.campaign.variants import variant_files
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
@@ -45,6 +49,24 @@ from mbds.simulation.version_run import run_version
 from mbds.simulation.versions import create_model_copy, ensure_version
 
 STOPPED = "the campaign was told to stop"
+PERFORMERS: dict[str, Callable[[Task, Callable[[], bool] | None], dict]] = {}
+"""Task kind -> function(task, stop) performing it: the result of :func:`run_task` without
+``wall``, ``compiled`` and ``warnings``."""
+
+
+def register_task_kind(kind: str):
+    """Function decorator: ``function(task, stop) -> dict`` performs the tasks of ``kind``."""
+    def add(function):
+        PERFORMERS[kind] = function
+        return function
+    return add
+
+
+def performer(kind: str) -> Callable:
+    """The function that performs tasks of ``kind``."""
+    import mbds.campaign.dapbc_tasks  # noqa: F401  (registers the DAP_BC run)
+
+    return PERFORMERS[kind]
 
 
 def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
@@ -54,7 +76,7 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     with warnings.catch_warnings(record=True) as caught, counted_compiles() as compiles:
         warnings.simplefilter("always", ModelWarning)
         try:
-            result = _prepare(task) if task.kind == PREPARE else _run(task, stop) if task.kind == RUN else _wear(task)
+            result = performer(task.kind)(task, stop)
         except ModelError as exc:
             result = {"state": FAILED, "reason": str(exc)}
         except Exception as exc:  # a defect met by one task must not stop the other chains
@@ -64,7 +86,8 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
             **({"warnings": found} if found else {})}
 
 
-def _prepare(task: Task) -> dict:
+@register_task_kind(PREPARE)
+def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """The chain's model folder (a variant's: the model files with its values written in) and
     its version 000."""
     if task.variant is None:
@@ -76,6 +99,7 @@ def _prepare(task: Task) -> dict:
     return {"state": DONE, "output": str(version)}
 
 
+@register_task_kind(RUN)
 def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
     folder = task.folder
@@ -105,7 +129,8 @@ def result_digest(record) -> str:
     return digest.hexdigest()[:16]
 
 
-def _wear(task: Task) -> dict:
+@register_task_kind(WEAR)
+def _wear(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """Version N + 1, worn by the losses of N's run (the mean over its replicates' runs)."""
     target = task.folder.parent / version_name(task.version + 1)
     if any(target.glob("*.wld")):

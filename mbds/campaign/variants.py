@@ -49,6 +49,11 @@ class Parameter:
     texts: tuple[str, ...]
     line: int | None
 
+    @property
+    def target(self) -> tuple:
+        """What the key changes: two keys with one target are one key given twice."""
+        return self.kind, self.section, self.name
+
 
 @dataclass(frozen=True)
 class Variant:
@@ -167,11 +172,17 @@ def check_world_combinations(files: ModelFiles, parameters: tuple[Parameter, ...
                              links: tuple[tuple[int, ...], ...] = ()) -> None:
     """Every combination of the varied world keys that a variant has passes the world file's
     checks (minimumTimestep <= maximumTimestep, ...); see :func:`check_world`."""
-    world = [i for i, p in enumerate(parameters) if p.kind == WORLD]
-    local = {i: k for k, i in enumerate(world)}
-    world_links = tuple(g for g in (tuple(local[i] for i in group if i in local) for group in links) if len(g) > 1)
-    for variant in product(tuple(parameters[i] for i in world), world_links) if world else ():
+    for variant in kind_product(parameters, links, WORLD):
         check_world(files, variant, job_path)
+
+
+def kind_product(parameters: tuple[Parameter, ...], links: tuple[tuple[int, ...], ...], kind: str) -> list[Variant]:
+    """The combinations of the values of the parameters of ``kind`` alone that variants have
+    (linked keys of that kind taken together); none when no parameter is of ``kind``."""
+    chosen = [i for i, p in enumerate(parameters) if p.kind == kind]
+    local = {i: k for k, i in enumerate(chosen)}
+    chosen_links = tuple(g for g in (tuple(local[i] for i in group if i in local) for group in links) if len(g) > 1)
+    return product(tuple(parameters[i] for i in chosen), chosen_links) if chosen else []
 
 
 def check_world(files: ModelFiles, variant: Variant, job_path: Path) -> None:

@@ -34,7 +34,7 @@ def main(
 
 @app.command()
 def check(
-    paths: list[Path] = typer.Argument(..., help="Model folders, .wld world files or .job job files."),
+    paths: list[Path] = typer.Argument(..., help="Model folders (MBDS or DAP_BC), .wld world files or .job job files."),
     compile: bool = typer.Option(True, "--compile/--no-compile", help="Also compile the model's functions."),
     version: int = typer.Option(0, "--model-version", help="Version whose [body:k] watch sections apply."),
     debug: bool = typer.Option(False, "--debug", help="Show a traceback on errors."),
@@ -42,12 +42,18 @@ def check(
     """Validate models and print a summary of each; a model folder's job files (and their
     [campaign] sections) are checked too; exit code 2 on bad input."""
     from mbds.campaign.plan import expand
+    from mbds.cli.dapbc_check import check_dapbc
     from mbds.cli.summary import print_summary
+    from mbds.io.dapbc import is_dapbc_folder
+    from mbds.io.dapbc_job import is_dapbc_job
     from mbds.model.load import load_model
 
     console = _console()
     with reported_errors(debug):
         for path in paths:
+            if is_dapbc_folder(path) or (path.suffix.lower() == ".job" and is_dapbc_job(path)):
+                check_dapbc(path, compile, console)
+                continue
             is_job = path.suffix.lower() == ".job"
             model = load_model(expand(path).job.world_path() if is_job else path, version=version, compile=compile)
             print_summary(model, console)

@@ -73,9 +73,12 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
 
     matplotlib.use("Agg")
     from mbds import open_campaign, plot
-    from mbds.campaign.plan import expand
+    from mbds.campaign.plan import DAP_BC, expand
 
     plan = expand(job)
+    if plan.model == DAP_BC:
+        raise ModelError("mbds-campaign plot draws wear campaigns; draw a DAP_BC campaign's runs from "
+                         "mbds.open_campaign (docs/campaigns.md, 'DAP_BC models')", job)
     folder = output or plan.folder / "figures"
     folder.mkdir(parents=True, exist_ok=True)
     tree = open_campaign(plan.folder)

@@ -10,6 +10,7 @@ from mbds.errors import ModelError, warn
 from mbds.io.ini import (
     NOT_NEGATIVE,
     Located,
+    Section,
     check_rules,
     key_line,
     find_section,
@@ -88,12 +89,11 @@ def expand_versions(text: str, file=None, line=None) -> list[int]:
     return versions
 
 
-def parse_job(text: str, path: str | Path | None = None) -> JobFile:
-    """A :class:`JobFile` from the text of a ``.job`` file.
-
-    Sections other than ``[main]`` are kept, unparsed, in ``extra_sections`` (name -> list of
-    (key, :class:`Located` value)) for the campaign layer to read.
-    """
+def job_sections(text: str, path: str | Path | None) -> tuple[Section, dict[str, int], dict]:
+    """The ``[main]`` section of a job file's text, the line of each of its keys (lower case)
+    and of ``[main]`` itself, and the other sections unparsed (name -> list of (key,
+    :class:`Located` value)); a section given twice is an error, one other than ``[campaign]``
+    is warned about."""
     sections = parse_ini(text, path)
     seen: dict[str, int] = {}
     for s in sections:
@@ -103,12 +103,7 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
     main = find_section(sections, "main")
     if main is None:
         raise ModelError("no [main] section", path, 1)
-    settings = read_settings(JobSettings, main, path)
     lines = {"[main]": main.line, **{e.key.lower(): e.line for e in main.entries}}
-    jobs_line = lines.get("jobs")
-    versions = expand_versions(settings.jobs, path, jobs_line)
-    if not versions:
-        raise ModelError("'jobs' lists no versions (e.g. jobs = 000-013)", path, jobs_line or main.line)
     extra = {}
     for s in sections:
         if s.name.lower() == "main":
@@ -116,6 +111,21 @@ def parse_job(text: str, path: str | Path | None = None) -> JobFile:
         if s.name.lower() != "campaign":
             warn(f"unknown section [{s.name}] (ignored)", path, s.line)
         extra[s.name] = [(e.key, Located(e.value, e.line)) for e in s.entries]
+    return main, lines, extra
+
+
+def parse_job(text: str, path: str | Path | None = None) -> JobFile:
+    """A :class:`JobFile` from the text of a ``.job`` file.
+
+    Sections other than ``[main]`` are kept, unparsed, in ``extra_sections`` (name -> list of
+    (key, :class:`Located` value)) for the campaign layer to read.
+    """
+    main, lines, extra = job_sections(text, path)
+    settings = read_settings(JobSettings, main, path)
+    jobs_line = lines.get("jobs")
+    versions = expand_versions(settings.jobs, path, jobs_line)
+    if not versions:
+        raise ModelError("'jobs' lists no versions (e.g. jobs = 000-013)", path, jobs_line or main.line)
     check_rules(settings, RULES, main, path)
     lo, hi = settings.lexico_randomization_range
     if lo < 0 or hi < lo:

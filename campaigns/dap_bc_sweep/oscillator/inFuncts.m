@@ -1,0 +1,4 @@
+function inFuncts
+    include_global
+
+    Functs = [];
