@@ -21,6 +21,10 @@ warm-up filled the cache).
 
 Tasks of one chain must run in plan order (``depends_on``); tasks of different chains, and the
 replicate runs of one version, may run at once in different processes.
+
+Importing this module loads neither sympy, xarray nor numba: a task imports the simulation
+layers it needs when it runs, so that many worker ranks starting at once start quickly
+(docs/performance.md).
 """
 
 from __future__ import annotations
@@ -36,13 +40,8 @@ from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
 from mbds.campaign.plan import PREPARE, RUN, Task
 from mbds.campaign.variants import variant_files
-from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, version_name, version_number
-from mbds.simulation.job import incomplete, next_version, time_limits
-from mbds.simulation.run import RunStopped
-from mbds.simulation.version_run import run_version
-from mbds.simulation.versions import create_model_copy, ensure_version
 
 STOPPED = "the campaign was told to stop"
 
@@ -67,6 +66,8 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
 def _prepare(task: Task) -> dict:
     """The chain's model folder (a variant's: the model files with its values written in) and
     its version 000."""
+    from mbds.simulation.versions import create_model_copy, ensure_version
+
     if task.variant is None:
         version = ensure_version(task.folder, 0, task.source)
     else:
@@ -78,6 +79,11 @@ def _prepare(task: Task) -> dict:
 
 def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
+    from mbds.data.history import FILE_NAME as HISTORY
+    from mbds.simulation.job import incomplete, time_limits
+    from mbds.simulation.version_run import run_version
+    from mbds.simulation.versions import create_model_copy
+
     folder = task.folder
     if version_number(folder) is None:  # a replicate: a copy of its version's model files
         create_model_copy(folder, read_model_files(folder.parent), task.version)
@@ -107,6 +113,8 @@ def result_digest(record) -> str:
 
 def _wear(task: Task) -> dict:
     """Version N + 1, worn by the losses of N's run (the mean over its replicates' runs)."""
+    from mbds.simulation.job import next_version
+
     target = task.folder.parent / version_name(task.version + 1)
     if any(target.glob("*.wld")):
         return {"state": DONE, "output": str(target), "note": "exists already, not replaced"}
@@ -117,6 +125,7 @@ def _stopper(stop: Callable[[], bool] | None):
     """A progress callback that ends the run once ``stop()`` is true (None without ``stop``)."""
     if stop is None:
         return None
+    from mbds.simulation.run import RunStopped
 
     def check(start, now, end, steps):
         if stop():
