@@ -62,7 +62,7 @@ FIRST_STEP = textwrap.dedent("""
     from mbds.simulation.run import simulate
     warnings.simplefilter("ignore")
     model = load_model(sys.argv[2])
-    dt = model.files.world.settings.maximum_timestep
+    dt = model.settings.maximum_timestep
     simulate(model, RunSettings(break_time=dt))
     print(json.dumps({"first_step": time.time() - float(sys.argv[1])}))
 """)

@@ -91,12 +91,12 @@ def initial_state(system: DapbcSystem, correct: bool) -> tuple[np.ndarray, np.nd
     iterations = system.module.correct(q, qd, 0.0, system.data.par, system.data.functs, POSITION_TOLERANCE)
     if iterations < 0:
         raise ModelError("the initial-condition correction did not converge in 50 Newton iterations "
-                         "(constraints not satisfiable near the given coordinates)", system.model.folder)
+                         "(constraints not satisfiable near the given coordinates)", system.source.path)
     return q, qd, Correction(system.q0.copy(), system.qd0.copy(), q.copy(), qd.copy(), iterations)
 
 
 def _post(system: DapbcSystem, times, Y, states) -> DapbcPost:
-    out = post_arrays(len(times), system.n, system.nc, len(system.model.points))
+    out = post_arrays(len(times), system.n, system.nc, system.n_points)
     system.module.post(times, Y, states, system.data, out)
     return out
 
@@ -120,7 +120,7 @@ def forward(system: DapbcSystem, settings: DapbcSettings, progress: Callable | N
         if status:
             t = integ.clock[0]
             reason = "the step size fell below its minimum" if status == 1 else "the state is not finite"
-            raise ModelError(f"forward dynamics stopped at t = {t:.9g} s: {reason}", system.model.folder)
+            raise ModelError(f"forward dynamics stopped at t = {t:.9g} s: {reason}", system.source.path)
         if progress is not None:
             progress(float(times[stop]), float(times[-1]), int(integ.counts[NFEV]))
     return DapbcResult("forward", times, Y, _post(system, times, Y, states), int(integ.counts[NFEV]),
@@ -131,7 +131,7 @@ def _kinematic_motion(system: DapbcSystem, settings: DapbcSettings, name: str):
     n, nc = system.n, system.nc
     if nc != n:
         raise ModelError(f"the {name} analysis needs a driven system with zero degrees of freedom: "
-                         f"{n} coordinates but {nc} constraint equations", system.model.folder)
+                         f"{n} coordinates but {nc} constraint equations", system.source.path)
     times = settings.times
     q, qd = system.q0.copy(), system.qd0.copy()
     Y, qdd = np.zeros((len(times), 2 * n)), np.zeros((len(times), n))
@@ -139,7 +139,7 @@ def _kinematic_motion(system: DapbcSystem, settings: DapbcSettings, name: str):
     for k, t in enumerate(times):
         if system.module.kinematic_state(q, qd, acc, t, system.data.par, system.data.functs, POSITION_TOLERANCE) < 0:
             raise ModelError(f"kinematic analysis: the constraints have no solution near t = {t:.9g} s "
-                             f"(Newton did not converge)", system.model.folder)
+                             f"(Newton did not converge)", system.source.path)
         Y[k, :n], Y[k, n:], qdd[k] = q, qd, acc
         q = q + qd * settings.report_step + 0.5 * acc * settings.report_step ** 2  # next Newton start
     return times, Y, qdd
@@ -184,7 +184,7 @@ def static(system: DapbcSystem, settings: DapbcSettings, progress: Callable | No
         state = np.zeros(system.n_state)
         if system.module.static_equilibrium(t, x, system.data, state, FORCE_TOLERANCE) < 0:
             raise ModelError(f"static analysis: no equilibrium found near the initial coordinates at "
-                             f"t = {t:.9g} s (Newton did not converge)", system.model.folder)
+                             f"t = {t:.9g} s (Newton did not converge)", system.source.path)
         Y[k, :n], lam[k] = x[:n], x[n:]
     post = _post(system, times, Y, np.zeros((len(times), system.n_state)))
     post.qdd[:] = 0.0

@@ -36,7 +36,7 @@ import netCDF4
 import numpy as np
 import xarray as xr
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.campaign.ledger import DONE, Ledger
 from mbds.campaign.plan import DAP_BC, RUN_KINDS, Plan, Task
 from mbds.campaign.replicates import identical_replicates

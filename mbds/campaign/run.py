@@ -33,14 +33,7 @@ from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
 from mbds.campaign.plan import DAP_BC, Plan, done_count, ready_tasks
 from mbds.campaign.priority import by_remaining_work
-from mbds.campaign.variants import variant_files
 from mbds.errors import ModelWarning
-from mbds.expr.cache import source_hash
-from mbds.expr.codegen import generate_source
-from mbds.io.folder import read_model_files
-from mbds.model.load import assemble_model
-from mbds.simulation.buffers import RunSettings
-from mbds.simulation.run import simulate
 
 CACHE_FOLDER = ".cache"
 STOP_SIGNALS = ("SIGTERM", "SIGUSR1", "SIGINT")
@@ -69,11 +62,20 @@ def campaign_cache(plan: Plan, private: bool = False) -> None:
 
 def warm_up(plan: Plan) -> int:
     """Compile (or load from the cache) each distinct model structure of the campaign's variants
-    and run its stepper for no time; the number of distinct structures."""
+    and run its stepper for no time; the number of distinct structures. (Its imports are made
+    here: rank 0 alone warms up, and a worker importing this module does not load sympy.)"""
     if plan.model == DAP_BC:
         from mbds.campaign.dapbc_plan import warm_up_dapbc
 
         return warm_up_dapbc(plan)
+    from mbds.campaign.variants import variant_files
+    from mbds.expr.cache import source_hash
+    from mbds.expr.codegen import generate_source
+    from mbds.io.folder import read_model_files
+    from mbds.model.load import assemble_model
+    from mbds.simulation.buffers import RunSettings
+    from mbds.simulation.run import simulate
+
     base = read_model_files(plan.job.world_path())
     seen = set()
     with warnings.catch_warnings():  # the runs report the model's warnings

@@ -25,6 +25,10 @@ replicate runs of one version, may run at once in different processes.
 Each task kind has its performer, registered with :func:`register_task_kind`: ``prepare``,
 ``run`` and ``wear`` here, ``dap_bc`` (a run of a DAP_BC model) in
 :mod:`mbds.campaign.dapbc_tasks`.
+
+Importing this module loads neither sympy, xarray nor numba: a task imports the simulation
+layers it needs when it runs, so that many worker ranks starting at once start quickly
+(docs/performance.md).
 """
 
 from __future__ import annotations
@@ -40,13 +44,8 @@ from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
 from mbds.campaign.plan import PREPARE, RUN, WEAR, Task
 from mbds.campaign.variants import variant_files
-from mbds.data.history import FILE_NAME as HISTORY
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, version_name, version_number
-from mbds.simulation.job import incomplete, next_version, time_limits
-from mbds.simulation.run import RunStopped
-from mbds.simulation.version_run import run_version
-from mbds.simulation.versions import create_model_copy, ensure_version
 
 STOPPED = "the campaign was told to stop"
 PERFORMERS: dict[str, Callable[[Task, Callable[[], bool] | None], dict]] = {}
@@ -64,8 +63,8 @@ def register_task_kind(kind: str):
 
 def performer(kind: str) -> Callable:
     """The function that performs tasks of ``kind``."""
-    import mbds.campaign.dapbc_tasks  # noqa: F401  (registers the DAP_BC run)
-
+    if kind not in PERFORMERS:
+        import mbds.campaign.dapbc_tasks  # noqa: F401  (registers the DAP_BC run)
     return PERFORMERS[kind]
 
 
@@ -90,6 +89,8 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
 def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """The chain's model folder (a variant's: the model files with its values written in) and
     its version 000."""
+    from mbds.simulation.versions import create_model_copy, ensure_version
+
     if task.variant is None:
         version = ensure_version(task.folder, 0, task.source)
     else:
@@ -102,6 +103,11 @@ def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
 @register_task_kind(RUN)
 def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
+    from mbds.data.history import FILE_NAME as HISTORY
+    from mbds.simulation.job import incomplete, time_limits
+    from mbds.simulation.version_run import run_version
+    from mbds.simulation.versions import create_model_copy
+
     folder = task.folder
     if version_number(folder) is None:  # a replicate: a copy of its version's model files
         create_model_copy(folder, read_model_files(folder.parent), task.version)
@@ -132,6 +138,8 @@ def result_digest(record) -> str:
 @register_task_kind(WEAR)
 def _wear(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """Version N + 1, worn by the losses of N's run (the mean over its replicates' runs)."""
+    from mbds.simulation.job import next_version
+
     target = task.folder.parent / version_name(task.version + 1)
     if any(target.glob("*.wld")):
         return {"state": DONE, "output": str(target), "note": "exists already, not replaced"}
@@ -142,6 +150,7 @@ def _stopper(stop: Callable[[], bool] | None):
     """A progress callback that ends the run once ``stop()`` is true (None without ``stop``)."""
     if stop is None:
         return None
+    from mbds.simulation.run import RunStopped
 
     def check(start, now, end, steps):
         if stop():

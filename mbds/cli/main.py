@@ -8,7 +8,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.cli.errors import reported_errors
 
 app = typer.Typer(

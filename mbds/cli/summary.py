@@ -12,7 +12,7 @@ from mbds.model.load import Model
 
 def print_summary(model: Model, console: Console) -> None:
     """Bodies, coordinates, dependent coordinates, contact pairs and watches of ``model``."""
-    s = model.files.world.settings
+    s = model.settings
     console.print(f"[bold]model[/bold] {escape(str(model.world_path))}")
     console.print(
         f"break time {model.break_time:g} s, time step {s.minimum_timestep:g} .. {s.maximum_timestep:g} s, "
@@ -58,8 +58,8 @@ def print_summary(model: Model, console: Console) -> None:
     labels = [w.label for w in model.watches]
     shown = ", ".join(labels[:12]) + (f", ... ({len(labels)} in all)" if len(labels) > 12 else "")
     console.print(f"watches ({len(labels)}): {escape(shown) or 'none'}")
-    if model.files.missing:
-        console.print("optional files absent: " + ", ".join(model.files.missing))
+    if model.source.missing:
+        console.print("optional files absent: " + ", ".join(model.source.missing))
     if model.compiled is not None:
         console.print(f"compiled functions: {model.compiled.source_path}")
 

@@ -10,9 +10,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.analysis.dapbc import DapbcResult, DapbcSettings
-from mbds.data.dapbc_drawing import drawing_variables
 from mbds.io.text import atomic_path
 from mbds.model.dapbc.system import DapbcSystem
 
@@ -52,7 +51,7 @@ def dapbc_dataset(system: DapbcSystem, result: DapbcResult, settings: DapbcSetti
     coords = {
         "time": ("time", result.times, {"standard_name": "time", "long_name": "time", "units": "s", "axis": "T"}),
         "body": ("body", np.arange(1, nb + 1, dtype=np.int32), {"long_name": "body index (inBodies)"}),
-        "point": ("point", np.arange(1, len(system.model.points) + 1, dtype=np.int32), {"long_name": "point index (inPoints)"}),
+        "point": ("point", np.arange(1, system.n_points + 1, dtype=np.int32), {"long_name": "point index (inPoints)"}),
         "axis": ("axis", np.array(["x", "y"], dtype=object), {"long_name": "x-y frame axis"}),
         "constraint": ("constraint", np.arange(1, system.nc + 1, dtype=np.int32), {"long_name": "constraint equation (joint order)"}),
         "constraint_name": ("constraint", np.array(system.constraint_names, dtype=object), {"long_name": "joint, type and row"}),
@@ -62,9 +61,9 @@ def dapbc_dataset(system: DapbcSystem, result: DapbcResult, settings: DapbcSetti
     }
     attrs = {
         "Conventions": "CF-1.10",
-        "title": f"mbds {result.analysis} analysis of DAP_BC model {system.model.folder.name}",
+        "title": f"mbds {result.analysis} analysis of DAP_BC model {system.source.name}",
         "kind": "dap_bc",
-        "model": system.model.folder.name,
+        "model": system.source.name,
         "analysis": result.analysis,
         "mbds_version": __version__,
         "python_version": platform.python_version(),
@@ -79,17 +78,11 @@ def dapbc_dataset(system: DapbcSystem, result: DapbcResult, settings: DapbcSetti
         "steps": result.steps,
         "rejected_steps": result.rejected,
         "wall_time": wall_time,
-        "input_files": " ".join(sorted(p.name for p in _inputs(system))),
+        "input_files": " ".join(sorted(p.name for p in system.source.inputs)),
     }
-    attrs.update({f"input_{p.name}": p.read_text(encoding="utf-8") for p in _inputs(system)})
-    drawing = drawing_variables(system.model)
+    attrs.update({f"input_{p.name}": p.read_text(encoding="utf-8") for p in system.source.inputs})
+    drawing = system.drawing
     return xr.Dataset({**data, **drawing[0]}, coords={**coords, **drawing[1]}, attrs={**attrs, **drawing[2]})
-
-
-def _inputs(system: DapbcSystem) -> list[Path]:
-    model = system.model
-    extra = [p for p in (model.user_force_file, model.user_force_py) if p is not None]
-    return list(model.files.values()) + extra
 
 
 def write_dapbc_history(path: str | Path, dataset: xr.Dataset) -> None:

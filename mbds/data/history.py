@@ -10,11 +10,11 @@ import netCDF4
 import numpy as np
 import xarray as xr
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
+from mbds.data.run_result import RunState
 from mbds.errors import ModelError
 from mbds.kernel import layout as K
-from mbds.simulation.run import RunState
 
 FILE_NAME = "history.nc"
 STATE_GROUP = "final_state"

@@ -102,7 +102,7 @@ def event_alerts(events: np.ndarray, model: Model) -> list[str]:
     """Alerts of kernel events (rows: time, code, value, value). LCP unbounded rays and
     iteration limits are logged only when the world's ``logLCPUnboundedRay`` /
     ``logLCPMaxNumberOfIterations`` ask for them."""
-    s = model.files.world.settings
+    s = model.settings
     out = []
     for t, code, a, b in events:
         code = int(code)

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from mbds.data.poses import body_poses, dependent_series
+from mbds.data.run_result import RunResult, RunState, Samples
 from mbds.data.watches import (
     IMPULSE_COLUMNS,
     WatchCarry,
@@ -22,7 +23,6 @@ from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
 from mbds.model.bodies import FIXED, Body
 from mbds.model.load import Model
-from mbds.simulation.run import RunResult, RunState, Samples
 
 COUNTERS = {
     "steps": K.STEPS,
@@ -167,7 +167,7 @@ def make_header(model: Model, start: RunState, *, seed: int, break_time: float,
     the input files to keep."""
     arrays = flatten(model)
     counts = np.diff(arrays.point_start) - 1
-    common = model.files.watches.common
+    common = model.watch_options
     return RunHeader(
         model=model.name,
         version=model.version,
@@ -182,7 +182,7 @@ def make_header(model: Model, start: RunState, *, seed: int, break_time: float,
         watch_points=[(w.points[0], w.points[-1]) for w in model.watches],
         bodies=[b.name for b in model.bodies],
         body_kind=[body_kind(b) for b in model.bodies],
-        body_color=np.array([body_color(f.main.rgb_color) for f in model.files.bodies]).reshape(-1, 3),
+        body_color=np.array([b.color for b in model.bodies], dtype=float).reshape(-1, 3),
         point_body=np.repeat(np.arange(len(counts)), counts),
         point_number=np.concatenate([np.arange(c) for c in counts]) if len(counts) else np.zeros(0, int),
         shape=np.concatenate([b.points[:-1] for b in model.bodies]),
@@ -210,7 +210,7 @@ class SeriesMaker:
     def __init__(self, model: Model, start: RunState):
         self.arrays = flatten(model)
         self.compiled = model.compile()
-        self.common = model.files.watches.common
+        self.common = model.watch_options
         self.start = start
         self.previous_time = float(start.clock[K.T])
         self.carry = WatchCarry()
@@ -274,19 +274,10 @@ def body_kind(body: Body) -> str:
     return "fixed" if all(kind == FIXED for kind in body.binding) else "moving"
 
 
-def body_color(text: str) -> tuple[float, float, float]:
-    """The ``RGBColor`` of a ``.bdy`` file (three numbers 0-1); green, the default, when unreadable."""
-    try:
-        red, green, blue = (min(max(float(v), 0.0), 1.0) for v in text.split())
-    except ValueError:
-        return (0.0, 1.0, 0.0)
-    return (red, green, blue)
-
-
 def _inputs(model: Model, folder: Path | None) -> dict[str, str]:
     """Text of every model file, by path relative to ``folder`` (or by name)."""
     out = {}
-    for path in model.files.paths():
+    for path in model.source.inputs:
         name = path.relative_to(folder).as_posix() if folder and path.is_relative_to(folder) else path.name
         out[name] = path.read_text(encoding="utf-8", errors="replace")
     return out

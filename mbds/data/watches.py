@@ -20,8 +20,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mbds.io.watches import CommonOptions
 from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, TEMP, WORK
+from mbds.model.geometry import smooth_closed
+from mbds.model.system import WatchOptions
 
 IMPULSE_COLUMNS = {"normal": IMP_N, "tangential": IMP_T, "x": IMP_X, "y": IMP_Y}
 
@@ -51,7 +52,7 @@ class WatchCarry:
     sums: dict[str, np.ndarray] = field(default_factory=dict)
 
 
-def watch_series(sums: np.ndarray, intervals: np.ndarray, options: CommonOptions,
+def watch_series(sums: np.ndarray, intervals: np.ndarray, options: WatchOptions,
                  carry: WatchCarry | None = None, heated: bool = False) -> WatchSeries:
     """Apply ``options`` to ``sums`` (samples, watches, POINT_COLUMNS); ``intervals`` (samples,)
     are the sample intervals (s). With ``carry``, the samples continue those of the parts of the
@@ -122,18 +123,6 @@ def distinct_points(values: np.ndarray, point_start: np.ndarray) -> np.ndarray:
     keep = np.ones(len(values), dtype=bool)
     keep[point_start[1:] - 1] = False
     return values[keep]
-
-
-def smooth_closed(values: np.ndarray, half_width: int) -> np.ndarray:
-    """Centred moving average over 2 * half_width + 1 neighbours of the points of one closed
-    shape (wrapping around); every point gets the mean when the window covers the shape."""
-    count = len(values)
-    if half_width <= 0 or count == 0:
-        return values.copy()
-    if 2 * half_width + 1 >= count:
-        return np.full_like(values, values.mean())
-    total = sum(np.roll(values, shift) for shift in range(-half_width, half_width + 1))
-    return total / (2 * half_width + 1)
 
 
 def smooth_points(values: np.ndarray, starts: np.ndarray, half_width: int) -> np.ndarray:

@@ -7,15 +7,6 @@
 See ``docs/expressions.md`` for the language itself.
 """
 
-from mbds.expr.codegen import (
-    CompiledModel,
-    DependentCoordinate,
-    ModelExpressions,
-    compile_model,
-    generate_source,
-)
-from mbds.expr.parse import parse_expression
-
 __all__ = [
     "CompiledModel",
     "DependentCoordinate",
@@ -24,3 +15,14 @@ __all__ = [
     "generate_source",
     "parse_expression",
 ]
+_LAZY = {name: "mbds.expr.codegen" for name in __all__[:-1]} | {"parse_expression": "mbds.expr.parse"}
+
+
+def __getattr__(name: str):
+    """The names of ``__all__``, imported on first use: importing a submodule that needs no
+    sympy (:mod:`mbds.expr.cache`) does not import sympy."""
+    if name in _LAZY:
+        from importlib import import_module
+
+        return getattr(import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'mbds.expr' has no attribute {name!r}")

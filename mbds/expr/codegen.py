@@ -29,7 +29,8 @@ from pathlib import Path
 
 import sympy
 
-from mbds import __version__, kernel
+from mbds import kernel
+from mbds._version import __version__
 from mbds.expr import cache
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter

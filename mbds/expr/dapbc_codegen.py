@@ -26,7 +26,7 @@ from types import ModuleType
 
 import sympy
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.expr import cache
 from mbds.expr.codegen import _assign, kernel_source_hash
 from mbds.expr.printer import NumbaPrinter

@@ -49,6 +49,7 @@ class Body:
     skin_thickness: float
     mass_derived: bool
     inertia_derived: bool
+    color: tuple[float, float, float] = (0.0, 1.0, 0.0)
 
     @property
     def virtual(self) -> bool:
@@ -127,12 +128,22 @@ def assemble_bodies(files: ModelFiles) -> list[Body]:
                 ),
                 mass_derived=mass_derived,
                 inertia_derived=inertia_derived,
+                color=body_color(main.rgb_color),
             )
         )
     for body in bodies:
         if body.carrier is not None:
             body.offset = relative_pose(bodies[body.carrier].start_position, body.start_position)
     return bodies
+
+
+def body_color(text: str) -> tuple[float, float, float]:
+    """The ``RGBColor`` of a ``.bdy`` file (three numbers 0-1); green, the default, when unreadable."""
+    try:
+        red, green, blue = (min(max(float(v), 0.0), 1.0) for v in text.split())
+    except ValueError:
+        return (0.0, 1.0, 0.0)
+    return (red, green, blue)
 
 
 def relative_pose(carrier: np.ndarray, pose: np.ndarray) -> np.ndarray:

@@ -110,3 +110,15 @@ def _segments_intersect(a0, a1, b0, b1) -> bool:
         return d == 0 and min(o[0], u[0]) <= v[0] <= max(o[0], u[0]) and min(o[1], u[1]) <= v[1] <= max(o[1], u[1])
 
     return on_segment(b0, b1, a0, d1) or on_segment(b0, b1, a1, d2) or on_segment(a0, a1, b0, d3) or on_segment(a0, a1, b1, d4)
+
+
+def smooth_closed(values: np.ndarray, half_width: int) -> np.ndarray:
+    """Centred moving average over 2 * half_width + 1 neighbours of the points of one closed
+    shape (wrapping around); every point gets the mean when the window covers the shape."""
+    count = len(values)
+    if half_width <= 0 or count == 0:
+        return values.copy()
+    if 2 * half_width + 1 >= count:
+        return np.full_like(values, values.mean())
+    total = sum(np.roll(values, shift) for shift in range(-half_width, half_width + 1))
+    return total / (2 * half_width + 1)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,10 +15,13 @@ from mbds.io.contacts import ContactLaw
 from mbds.io.coordinates import CoordinateName, parse_coordinate_name
 from mbds.io.folder import ModelFiles, read_model_files
 from mbds.io.ini import Located, split_list
+from mbds.io.watches import CommonOptions
+from mbds.io.world import WorldSettings
 from mbds.model.bodies import GENERALIZED, POSE, Body, assemble_bodies
 from mbds.model.checks import check_laws, check_mass_matrix
 from mbds.model.contacts import ContactPair, assemble_contacts
 from mbds.model.equations import ExpressionReader, Parameters, gather_expressions
+from mbds.model.system import StepSettings, SystemSource, WatchOptions
 from mbds.model.watches import Watch, assemble_watches
 
 
@@ -27,10 +31,15 @@ class Model:
 
     ``q0``/``qd0`` are the start values of the generalized coordinates (m, rad; m/s, rad/s):
     a body coordinate starts at its ``.bdy`` start value, a free ``g'`` coordinate at 0.
-    ``break_time`` is in s. ``compiled`` holds the numba functions once :meth:`compile` ran.
+    ``break_time`` is in s. ``source`` names the files it was read from, ``settings`` and
+    ``watch_options`` are the world's and the watches file's settings (SI units): nothing
+    below this front-end reads the files themselves. ``compiled`` holds the numba functions
+    once :meth:`compile` ran.
     """
 
-    files: ModelFiles
+    source: SystemSource
+    settings: StepSettings
+    watch_options: WatchOptions
     version: int
     bodies: list[Body]
     coordinates: list[CoordinateName]
@@ -47,11 +56,11 @@ class Model:
 
     @property
     def world_path(self) -> Path:
-        return self.files.world.path
+        return self.source.path
 
     @property
     def name(self) -> str:
-        return self.files.world.path.stem
+        return self.source.name
 
     def compile(self, cache_dir: str | Path | None = None) -> CompiledModel:
         """Compile (or load from the disk cache) the model's numba functions."""
@@ -81,7 +90,9 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
     q0, qd0 = _start_state(files, bodies)
     duration = break_time(files, files.world.path, bodies)
     return Model(
-        files=files,
+        source=SystemSource(files.world.path.stem, files.world.path, tuple(files.paths()), tuple(files.missing)),
+        settings=step_settings(files.world.settings),
+        watch_options=watch_options(files.watches.common),
         version=version,
         bodies=bodies,
         coordinates=list(files.coordinates.coordinates),
@@ -95,6 +106,24 @@ def assemble_model(files: ModelFiles, version: int = 0) -> Model:
         q0=q0,
         qd0=qd0,
     )
+
+
+def step_settings(world: WorldSettings) -> StepSettings:
+    """The stepper's settings from a world file's ``[main]``."""
+    interval = world.history_multiple_of_maximum_timestep * world.maximum_timestep
+    return _same_named(StepSettings, world, sample_interval=interval)
+
+
+def watch_options(common: CommonOptions) -> WatchOptions:
+    """The watch output options of a watches file's ``[common]``."""
+    return _same_named(WatchOptions, common)
+
+
+def _same_named(cls, record, **derived):
+    """An instance of the dataclass ``cls`` from the fields of ``record`` of the same names, and
+    the ``derived`` values."""
+    names = [f.name for f in dataclasses.fields(cls) if f.name not in derived]
+    return cls(**{name: getattr(record, name) for name in names}, **derived)
 
 
 def _start_state(files: ModelFiles, bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:

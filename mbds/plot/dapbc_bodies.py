@@ -20,7 +20,7 @@ from mbds.plot.bodies import frame_axes
 
 DRAWING = ("body_shape", "body_width", "body_height", "body_radius", "body_color", "point_body",
            "anim_point_body", "anim_point_local", "joint_type", "joint_points", "force_type", "force_points")
-"""The variables of a dap_bc history that describe its drawing (mbds/data/dapbc_drawing.py)."""
+"""The variables of a dap_bc history that describe its drawing (mbds/model/dapbc/drawing.py)."""
 WINDOW = ("xmin", "xmax", "ymin", "ymax")
 LINKS = ("rev-rev", "rev-tran")
 SPRINGS = ("ptp",)

@@ -23,7 +23,7 @@ def model_tuple(a: KernelArrays) -> K.ModelArrays:
 
 @dataclass
 class RunSettings:
-    """What a run takes beyond the model files: break time (s), the seed of the lexicographic
+    """What a run takes beyond the model: break time (s), the seed of the lexicographic
     tolerance draws and their range (none when the upper end is 0), the LCP pivot limit, and the
     passes of the step loop after which the stepper returns to its caller (who looks at Ctrl-C,
     time limits and progress then: 2000 passes take well under a second)."""
@@ -36,8 +36,8 @@ class RunSettings:
 
 
 def settings_array(model: Model, run: RunSettings) -> np.ndarray:
-    """The stepper's settings array from the world file and the run settings."""
-    s = model.files.world.settings
+    """The stepper's settings array from the model's and the run's settings."""
+    s = model.settings
     out = np.zeros(K.SETTINGS)
     out[K.DT_MIN] = s.minimum_timestep
     out[K.DT_MAX] = s.maximum_timestep
@@ -48,7 +48,7 @@ def settings_array(model: Model, run: RunSettings) -> np.ndarray:
     out[K.LEXICO] = s.lcp_lexico_zero_tolerance
     out[K.LEXICO_LOW], out[K.LEXICO_HIGH] = run.lexico_range
     out[K.GO_BACK] = float(s.try_to_solve_by_going_back)
-    out[K.SAMPLE_EVERY] = s.history_multiple_of_maximum_timestep * s.maximum_timestep
+    out[K.SAMPLE_EVERY] = s.sample_interval
     out[K.SAMPLE_AT_COLLISION] = float(s.history_at_collision)
     out[K.SAMPLE_EACH_STEP] = float(s.history_each_timestep)
     out[K.MAX_PIVOTS] = run.max_pivots

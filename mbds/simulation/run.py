@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
+from mbds.data.run_result import RunResult, RunState, Samples
 from mbds.kernel import layout as K
 from mbds.kernel.random import seeded_state
 from mbds.model.arrays import KernelArrays, flatten
@@ -24,55 +23,6 @@ HISTORY_CHUNK = 4096
 EVENT_CHUNK = 1024
 
 
-@dataclass
-class RunState:
-    """Everything that changes during a run (enough to continue it exactly)."""
-
-    clock: np.ndarray
-    q: np.ndarray
-    u: np.ndarray
-    rng: np.ndarray
-    point_loss: np.ndarray
-    point_interval: np.ndarray
-
-
-class Samples(NamedTuple):
-    """History samples of part of a run: time (s), q, u, q'' (samples, n), mechanical energy,
-    lost work and drive work (J, cumulative), watch interval sums (samples, watches,
-    POINT_COLUMNS)."""
-
-    time: np.ndarray
-    q: np.ndarray
-    u: np.ndarray
-    a: np.ndarray
-    energy: np.ndarray
-    lost: np.ndarray
-    drive: np.ndarray
-    watches: np.ndarray
-
-
-@dataclass
-class RunResult:
-    """A run: its samples (also read as ``result.time``, ``result.q``, ...; with no row when
-    they went to an ``on_samples`` callback of :func:`simulate`), its events (rows: time, code,
-    value, value) and its final state."""
-
-    samples: Samples
-    events: np.ndarray
-    state: RunState
-    capacity: int = field(default=0)
-    stopped: str = ""  # why the run ended before its break time ("" when it reached it)
-
-    @property
-    def complete(self) -> bool:
-        return not self.stopped
-
-    def __getattr__(self, name: str):
-        if name in Samples._fields:
-            return getattr(self.samples, name)
-        raise AttributeError(name)
-
-
 class RunStopped(Exception):
     """Raised by a callback of :func:`simulate` to end the run early; its message says why."""
 
@@ -81,7 +31,7 @@ def initial_state(model: Model, seed: int) -> RunState:
     """The state at t = 0 from the model's start values."""
     arrays = flatten(model)
     clock = np.zeros(K.CLOCK)
-    clock[K.DT] = model.files.world.settings.maximum_timestep
+    clock[K.DT] = model.settings.maximum_timestep
     return RunState(
         clock=clock,
         q=arrays.q0.copy(),

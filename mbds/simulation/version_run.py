@@ -19,6 +19,7 @@ from mbds.data.legacy import (
     write_log,
 )
 from mbds.data.record import RunRecord, SeriesMaker, make_header, make_record
+from mbds.data.run_result import RunState, Samples
 from mbds.errors import ModelError
 from mbds.io.folder import run_number, version_name
 from mbds.io.text import atomic_path
@@ -28,9 +29,7 @@ from mbds.model.load import Model, load_model
 from mbds.simulation.buffers import RunSettings
 from mbds.simulation.options import RunOptions
 from mbds.simulation.run import (
-    RunState,
     RunStopped,
-    Samples,
     continue_from,
     initial_point_values,
     initial_state,

@@ -16,10 +16,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mbds.data.watches import smooth_closed
 from mbds.errors import ModelError
 from mbds.io.folder import ModelFiles
 from mbds.io.text import QUOTES
+from mbds.model.geometry import smooth_closed
 from mbds.wear.reshape import (
     BodyWear,
     directions,

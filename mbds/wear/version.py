@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from mbds import __version__
+from mbds._version import __version__
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
 from mbds.io.folder import (

@@ -117,7 +117,7 @@ def test_woodpecker_jacobian_matches_finite_differences(models):
     """The .dc file's J and j are the derivatives of its positions: c'' = J q'' + j."""
     model = models["woodpecker"]
     compiled, p = model.compiled, model.parameters.values
-    n, m = 3, len(model.files.dependent.coordinates)
+    n, m = 3, len(model.dependent)
     q, qd, qdd = np.array([0.01, -0.1, -0.25]), np.array([-0.3, 2.0, -7.0]), np.array([1.0, -50.0, 300.0])
 
     def positions(tau):
@@ -215,7 +215,7 @@ def test_dependent_coordinate_from_position_only(tmp_path):
     reference = load_model(CAMPAIGNS / "woodpecker")
     q, qd, p = np.array([0.0, -0.1, -0.27]), np.array([-0.3, 1.0, -7.0]), full.parameters.values
     out = {}
-    m = len(full.files.dependent.coordinates)
+    m = len(full.dependent)
     for name, model in (("derived", derived), ("reference", reference)):
         J, j = np.empty((m, 3)), np.empty(m)
         model.compiled.dependent_jacobian(q, qd, 0.0, p, J, j)

@@ -15,9 +15,10 @@ from pathlib import Path
 
 import numpy as np
 
+from mbds.data.run_result import RunResult
 from mbds.model.load import load_model
 from mbds.simulation.buffers import RunSettings
-from mbds.simulation.run import RunResult, simulate
+from mbds.simulation.run import simulate
 
 CAMPAIGNS = Path(__file__).resolve().parents[2] / "campaigns"
 """The example models."""

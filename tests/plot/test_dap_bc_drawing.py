@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 from mbds import dapbc, plot
 from mbds.analysis.dapbc import DapbcSettings
 from mbds.cli.main import app
-from mbds.data.dapbc_drawing import drawing_variables
+from mbds.model.dapbc.drawing import drawing_variables
 from mbds.errors import ModelError
 from mbds.io.dapbc import read_dapbc_folder
 from mbds.plot.motion import frame_samples

@@ -5,12 +5,12 @@ import pytest
 
 from mbds.data.watches import (
     distinct_points,
-    smooth_closed,
     smooth_points,
     watch_series,
 )
-from mbds.io.watches import CommonOptions
 from mbds.kernel.layout import ANGLE, IMP_N, IMP_T, IMP_X, IMP_Y, POINT_COLUMNS, WORK
+from mbds.model.geometry import smooth_closed
+from mbds.model.system import WatchOptions
 
 INTERVALS = np.array([0.0, 0.5, 0.5, 1.0])
 
@@ -29,7 +29,7 @@ def sums():
 
 
 def test_defaults_pass_the_interval_sums_through(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions())
+    out = watch_series(sums, INTERVALS, WatchOptions())
     for name, column in (("normal", IMP_N), ("tangential", IMP_T), ("x", IMP_X), ("y", IMP_Y)):
         np.testing.assert_array_equal(out.impulse[name], sums[:, :, column])
     np.testing.assert_array_equal(out.work, sums[:, :, WORK])
@@ -37,7 +37,7 @@ def test_defaults_pass_the_interval_sums_through(sums):
 
 
 def test_convert_impulse_to_force_divides_by_the_interval(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions(convert_impulse_to_force=True))
+    out = watch_series(sums, INTERVALS, WatchOptions(convert_impulse_to_force=True))
     assert out.force
     np.testing.assert_array_equal(out.impulse["normal"][:, 0], [0, 4, 0, 4])  # empty first interval -> 0
     np.testing.assert_array_equal(out.impulse["y"][:, 1], [0, 0, 0, 4])
@@ -45,7 +45,7 @@ def test_convert_impulse_to_force_divides_by_the_interval(sums):
 
 def test_time_constant_decays_between_samples(sums):
     tau = 0.25
-    out = watch_series(sums, INTERVALS, CommonOptions(time_constant=tau))
+    out = watch_series(sums, INTERVALS, WatchOptions(time_constant=tau))
     y = out.impulse["normal"][:, 0]
     assert y[1] == 2
     assert y[2] == pytest.approx(2 * np.exp(-0.5 / tau))
@@ -53,25 +53,25 @@ def test_time_constant_decays_between_samples(sums):
 
 
 def test_force_then_decay(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions(time_constant=1.0, convert_impulse_to_force=True))
+    out = watch_series(sums, INTERVALS, WatchOptions(time_constant=1.0, convert_impulse_to_force=True))
     y = out.impulse["normal"][:, 0]
     assert y[3] == pytest.approx(4 * np.exp(-0.5) * np.exp(-1.0) + 4)
 
 
 def test_cumulative_work(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions(cumulative_work=True))
+    out = watch_series(sums, INTERVALS, WatchOptions(cumulative_work=True))
     np.testing.assert_array_equal(out.work[:, 0], [0, 3, 3, 4])
     np.testing.assert_array_equal(out.work[:, 1], [1, 1, 1, 3])
 
 
 def test_angle_instead_of_work(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions(absolute_angle_instead_of_work=True))
+    out = watch_series(sums, INTERVALS, WatchOptions(absolute_angle_instead_of_work=True))
     assert out.work is None
     np.testing.assert_array_equal(out.angle, sums[:, :, ANGLE])
 
 
 def test_averaged_t_div_n_is_the_running_ratio_of_tangential_to_normal_impulse(sums):
-    out = watch_series(sums, INTERVALS, CommonOptions(write_averaged_t_div_n=True))
+    out = watch_series(sums, INTERVALS, WatchOptions(write_averaged_t_div_n=True))
     nt = out.t_div_n[:, 0]
     assert nt[0] == 0.0  # no normal impulse yet: 0, not 0/0
     np.testing.assert_allclose(nt[1:], [0.5, 0.5, 0.0])  # (1 + 0 - 1) / (2 + 0 + 4)

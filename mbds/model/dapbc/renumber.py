@@ -19,6 +19,7 @@ import numpy as np
 from mbds.io.dapbc.fields import field_kind
 from mbds.io.dapbc.records import DapbcModel
 from mbds.io.dapbc.user_force import FORCE_FIELD_COUNT, force_field_table
+from mbds.model.dapbc.drawing import drawing_variables
 from mbds.model.dapbc.functs import funct_table
 from mbds.model.dapbc.system import DapbcSystem, _rigid_offset, initial_coordinates
 
@@ -53,4 +54,4 @@ def with_numbers(system: DapbcSystem, model: DapbcModel) -> DapbcSystem:
         point_local=np.array([p.sPlocal for p in model.points], float).reshape(-1, 2),
         force_fields=force_field_table(model.forces).reshape(-1, FORCE_FIELD_COUNT),
     )
-    return dataclasses.replace(system, model=model, data=data, q0=q0, qd0=qd0)
+    return dataclasses.replace(system, model=model, data=data, q0=q0, qd0=qd0, drawing=drawing_variables(model))

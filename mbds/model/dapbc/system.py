@@ -24,17 +24,22 @@ from mbds.expr.dapbc_codegen import DapbcExpressions, compile_dapbc
 from mbds.io.dapbc.records import DapbcModel
 from mbds.io.dapbc.user_force import FORCE_FIELD_COUNT, UserForceCode, force_field_table, user_force_code
 from mbds.kernel.dapbc_layout import DapbcData
+from mbds.model.dapbc.drawing import drawing_variables
 from mbds.model.dapbc.forces import FORCES
 from mbds.model.dapbc.functs import funct_table
 from mbds.model.dapbc.joints import JOINTS
 from mbds.model.dapbc.symbolic import Symbols
+from mbds.model.system import SystemSource
 
 
 @dataclass(frozen=True)
 class DapbcSystem:
     """A DAP_BC model ready to analyse: its compiled module (see mbds.expr.dapbc_codegen), the
     kernel data, initial coordinates and velocities (3 per body: x, y, phi), the number of
-    constraints with a name for each, the number of contact-state slots, and the records."""
+    constraints with a name for each, the number of contact-state slots, the parameter labels
+    where it came from and what a drawing of it needs (mbds.model.dapbc.drawing). ``model`` holds the records it was built from, for the front-end
+    only (a campaign variant changes a field there and builds again); the analyses and the
+    outputs read ``source`` and the arrays, never the records."""
 
     model: DapbcModel
     module: ModuleType
@@ -44,6 +49,12 @@ class DapbcSystem:
     constraint_names: list[str]
     n_state: int
     parameter_labels: list[str]
+    source: SystemSource
+    drawing: tuple[dict, dict, dict]
+
+    @property
+    def n_points(self) -> int:
+        return self.data.point_body.size
 
     @property
     def n(self) -> int:
@@ -133,4 +144,11 @@ def build_system(model: DapbcModel) -> DapbcSystem:
         force_fields=force_field_table(model.forces).reshape(-1, FORCE_FIELD_COUNT),
         has_user=int(code is not None),
     )
-    return DapbcSystem(model, module, data, q0, qd0, names, code.n_state if code else 0, list(s.labels))
+    return DapbcSystem(model, module, data, q0, qd0, names, code.n_state if code else 0, list(s.labels),
+                       dapbc_source(model), drawing_variables(model))
+
+
+def dapbc_source(model: DapbcModel) -> SystemSource:
+    """The folder's name and path and its in-files (with user_force.m or .py where present)."""
+    extra = [p for p in (model.user_force_file, model.user_force_py) if p is not None]
+    return SystemSource(model.folder.name, model.folder, tuple([*model.files.values(), *extra]))

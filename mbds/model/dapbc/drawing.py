@@ -1,4 +1,4 @@
-"""What a drawing of a DAP_BC run needs, as variables and attributes of its history: inAnimate's
+"""What a drawing of a DAP_BC run needs, as plain arrays for the variables and attributes of its history: inAnimate's
 shapes, colours, extra points and window, and where the points, joints and forces sit
 (docs/dapbc.md, "Drawing"). ``mbds.plot`` draws the bodies from these and the run's r, p, rP."""
 
