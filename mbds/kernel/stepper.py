@@ -345,7 +345,9 @@ def _time_to_reach(distance, rate, accel):
     if disc < 0.0:
         return np.inf
     root = np.sqrt(disc)
-    first = (-rate - root) / accel if accel > 0.0 else 2.0 * distance / (-rate + root)
+    if accel < 0.0:  # one positive root; each form avoids the cancellation of -rate + root
+        return (rate + root) / -accel if rate >= 0.0 else 2.0 * distance / (root - rate)
+    first = (-rate - root) / accel
     if first > 0.0:
         return first
     second = (-rate + root) / accel
