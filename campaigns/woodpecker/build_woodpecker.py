@@ -1,6 +1,6 @@
 """Build the woodpecker toy (manual section 2.3, Figure 2.6) from its energies.
 
-    python campaigns/woodpecker/build_woodpecker.py [FOLDER] [--bird exact|small-angle]
+    python campaigns/woodpecker/build_woodpecker.py [FOLDER] [--bird exact|small-angle|beak] [--four-dof]
 
 writes the model folder (default: ``built`` beside this script). A ring (y, Rz) slides down a
 fixed stick; the bird (Rz) hangs from the ring on a torsional spring. The equations of motion
@@ -13,6 +13,12 @@ kinematics of the reference while the outline rotates exactly, and carries the s
 face on two dependent bodies whose corners follow the reference's kinematics too (the example's
 files; this variant reproduces the published limit cycle). Further variants are one entry of
 that table.
+
+``--four-dof`` writes the manual's 4-DoF, seven-body model instead (campaigns/woodpecker4dof):
+the ring's x is generalized too (the bird moves with it), both sleeve walls (``ringSideR`` on
+the bird's side of the stick, ``ringSideL`` on the other) are rigid parts of the ring, and
+``ringF`` (the ring's spring seat at the hinge) and ``foot`` (the bird's foot at the hinge) only
+complete the picture. The bird is placed as in ``beak``; the walls turn exactly with the ring.
 """
 
 from __future__ import annotations
@@ -74,14 +80,19 @@ def _sleeve_corners(mb, ring):
     return corners
 
 
+STICK_ENDS = {False: (-0.95, 0.05), True: (-1.6, 0.05)}
+"""Bottom and top of the stick (m): below the sleeve's start (y = 0) the stick is long enough for
+the sleeve to slide down for the whole run (1 s of the 3-DoF example, 10 s of the 4-DoF one at
+the limit cycle's 0.13 m/s)."""
+
 BIRD_POSITIONS = {"exact": _exact, "small-angle": _small_angle, "beak": _beak}
 """The bird's centre (x, y) (m) from the builder, the ring and bird bodies and the arms lM, lG
 (a variant may declare constants of its own)."""
 
 
-def build(folder: Path, bird_position: str = "exact") -> Path:
-    """Write the woodpecker into ``folder`` with the bird placed by ``BIRD_POSITIONS[bird_position]``;
-    returns its world file."""
+def build(folder: Path, bird_position: str = "exact", four_dof: bool = False) -> Path:
+    """Write the woodpecker into ``folder`` with the bird placed by ``BIRD_POSITIONS[bird_position]``
+    (the 4-DoF model of the manual with ``four_dof``); returns its world file."""
     mb = ModelBuilder()
     g = mb.constant("gravity", 9.81)
     lM = mb.constant("lM", 0.01)
@@ -89,28 +100,37 @@ def build(folder: Path, bird_position: str = "exact") -> Path:
     k = mb.constant("spring", 0.0056)
     ring = mb.body("ring", _rectangle(0.0042, 0.0085, -0.0006, 0.0006), mass=0.0003, inertia=5e-9,
                    density=1000, thickness=0.005, color=(1, 1, 0), position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
-    stick = mb.body("stick", _rectangle(-0.0025, 0.0025, -0.95, 0.05), density=700, thickness=0.005,
+    stick = mb.body("stick", _rectangle(-0.0025, 0.0025, *STICK_ENDS[four_dof]), density=700, thickness=0.005,
                     color=(0.6, 0.4, 0.2))
     bird = mb.body("bird", shapes.polygon(BIRD_OUTLINE), mass=0.0045, inertia=7e-7, density=1000,
                    thickness=0.005, color=(0, 0.4, 1), position=(0, 0, -0.2788), velocity=(0, 0, -7.4583))
-    small_angle_contacts = bird_position == "beak"
-    wall = (0.0036 if small_angle_contacts else 0.0031, 0.0041)  # the inner half is on the sides below
-    side = mb.body("ringSideR", _rectangle(*wall, -0.0058, 0.0058), virtual_to=ring, density=1000,
-                   thickness=0.005, color=(1, 1, 0), position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
+    small_angle_contacts = bird_position == "beak" and not four_dof
+    walls = [(0.0036 if small_angle_contacts else 0.0031, 0.0041)]  # the inner half is on the sides below
+    if four_dof:
+        mb.body("ringF", _rectangle(0.0085, 0.0105, -0.0015, 0.0015), virtual_to=ring, color=(1, 1, 0),
+                position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
+        mb.body("foot", _rectangle(-0.0165, -0.0135, -0.001, 0.001), virtual_to=bird, color=(0, 0.4, 1),
+                position=(0, 0, -0.2788), velocity=(0, 0, -7.4583))
+        walls.append((-0.0041, -0.0031))
+    sides = [mb.body(name, _rectangle(*wall, -0.0058, 0.0058), virtual_to=ring, density=1000, thickness=0.005,
+                     color=(1, 1, 0), position=(0, 0, -0.1009), velocity=(0, -0.3411, 0))
+             for name, wall in zip(("ringSideR", "ringSideL"), walls)]
 
-    mb.generalized(ring.y, ring.Rz, bird.Rz)
+    mb.generalized(*([ring.x] if four_dof else []), ring.y, ring.Rz, bird.Rz)
     bird_x, bird_y = BIRD_POSITIONS[bird_position](mb, ring, bird, lM, lG)
-    mb.dependent(bird.x, bird_x)
+    mb.dependent(bird.x, bird_x + ring.x if four_dof else bird_x)
     mb.dependent(bird.y, bird_y)
     corners = _sleeve_corners(mb, ring) if small_angle_contacts else []
 
     bird_height = ring.y + lM * ring.Rz + lG * bird.Rz  # linearised in the angles
-    mb.kinetic_energy(E.point_mass_kinetic(ring.m, 0, ring.y) + ring.Jzz * sympy.diff(ring.Rz) ** 2 / 2)
-    mb.kinetic_energy(E.point_mass_kinetic(bird.m, 0, bird_height) + bird.Jzz * sympy.diff(bird.Rz) ** 2 / 2)
+    sleeve_x = ring.x if four_dof else 0  # the bird moves sideways with the ring
+    mb.kinetic_energy(E.point_mass_kinetic(ring.m, sleeve_x, ring.y) + ring.Jzz * sympy.diff(ring.Rz) ** 2 / 2)
+    mb.kinetic_energy(E.point_mass_kinetic(bird.m, sleeve_x, bird_height) + bird.Jzz * sympy.diff(bird.Rz) ** 2 / 2)
     mb.potential_energy(E.gravity(ring.m, ring.y, g) + E.gravity(bird.m, bird_height, g))
     mb.potential_energy(E.torsional_spring(k, ring.Rz - bird.Rz))
 
-    mb.contact(stick, side, friction=0.3)
+    for side in sides:
+        mb.contact(stick, side, friction=0.3)
     mb.contact(stick, bird, friction=0.3, restitution_normal=0.5)
     for corner, _ in corners:
         mb.contact(stick, corner, friction=0.3)
@@ -119,14 +139,17 @@ def build(folder: Path, bird_position: str = "exact") -> Path:
         for corner, point in corners:
             mb.watch(corner, point)
     else:
-        mb.watch(side, "0,3")
-    mb.world(minimum_timestep=1e-12, maximum_timestep=1e-5, maximum_penetration=1e-6, break_time=1.0)
-    return mb.write(folder, "woodpecker")
+        for side, inner in zip(sides, ("0,3", "1,2")):  # the inner corners of each wall
+            mb.watch(side, inner)
+    mb.world(minimum_timestep=1e-12, maximum_timestep=1e-5, maximum_penetration=1e-6,
+             break_time=10.0 if four_dof else 1.0)
+    return mb.write(folder, "woodpecker4dof" if four_dof else "woodpecker")
 
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder", nargs="?", type=Path, default=Path(__file__).resolve().parent / "built")
     parser.add_argument("--bird", choices=sorted(BIRD_POSITIONS), default="exact")
+    parser.add_argument("--four-dof", action="store_true", help="the manual's 4-DoF, seven-body model")
     arguments = parser.parse_args()
-    run_build(build, arguments.folder, arguments.bird)
+    run_build(build, arguments.folder, arguments.bird, arguments.four_dof)

@@ -13,7 +13,8 @@ Each step, at (q, u, t):
    state and the step was longer than ``minimumTimestep``, it is rejected and retried from its
    start with half the step;
 4. closed contacts (gap <= 0) approaching faster than ``ZeroVelocityTolerance`` start an impact:
-   a compression and an expansion LCP over all closed contacts change the velocities;
+   a compression and an expansion LCP over all closed contacts change the velocities, and the
+   body velocities, contact rows, laws and h(q, u, t) are computed again from the new ones;
 5. closed contacts that do not separate faster than the rest velocity (``maximumPenetration /
    maximumTimestep``) form the acceleration LCP with Coulomb friction; contacts slower than the
    rest velocity tangentially are stick candidates, the others slide;
@@ -202,6 +203,11 @@ def advance(
                             point_loss, point_interval, back, events, t)
         if counted:
             clock[IMPACTS] += 1.0
+        if impacting:  # everything that depends on the velocities, again at the post-impact state
+            _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
+            _contact_rows(nc, contacts, model, bodies, rows)
+            contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
+            dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc)  # M(q, t) factorised above
         # --- 5: forces between impacts
         na, forces_ok = contact_forces(nc, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
                                        forces.lam_t1, a1, events, t)
@@ -339,7 +345,9 @@ def _time_to_reach(distance, rate, accel):
     if disc < 0.0:
         return np.inf
     root = np.sqrt(disc)
-    first = (-rate - root) / accel if accel > 0.0 else 2.0 * distance / (-rate + root)
+    if accel < 0.0:  # one positive root; each form avoids the cancellation of -rate + root
+        return (rate + root) / -accel if rate >= 0.0 else 2.0 * distance / (root - rate)
+    first = (-rate - root) / accel
     if first > 0.0:
         return first
     second = (-rate + root) / accel

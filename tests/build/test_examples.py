@@ -116,3 +116,17 @@ def test_every_woodpecker_bird_position_builds_a_model_mbds_reads(tmp_path, vari
     if variant == "small-angle":  # y = y_ring + lM Rz_ring + lG Rz_bird: J = (1, lM, lG), j = 0
         dc = read_quietly(tmp_path).dependent.coordinates[1]
         assert [e.text for e in dc.jacobian] == ["1", "c'lM", "c'lG"] and dc.jacobian_scalar.text == "0"
+
+
+def test_the_four_dof_woodpecker_is_the_shipped_campaign(tmp_path):
+    """``--four-dof`` writes the manual's seven-body model (section 2.3.2 world file order, ring x
+    generalized) with the same expressions as campaigns/woodpecker4dof."""
+    script = load_script(CAMPAIGNS / "woodpecker" / "build_woodpecker.py")
+    script.build(tmp_path, "beak", True)
+    ours, theirs = read_quietly(tmp_path), read_quietly(CAMPAIGNS / "woodpecker4dof")
+    assert expression_differences(ours, theirs) == {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = assemble_model(ours)
+    assert [b.name for b in model.bodies] == ["ring", "stick", "bird", "ringF", "foot", "ringSideR", "ringSideL"]
+    assert [str(c) for c in model.coordinates] == ["b'ring'x[t]", "b'ring'y[t]", "b'ring'Rz[t]", "b'bird'Rz[t]"]

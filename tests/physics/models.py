@@ -49,7 +49,8 @@ class BodyOnFloor:
     (kg), centroidal inertia (kg m²), start pose (x, y, Rz) and velocity (m, rad; m/s, rad/s),
     gravity (gx, gy) (m/s²), friction coefficient and normal restitution; world settings: time
     steps (s), maximum penetration (m), history interval (in maximum steps), break time (s) and
-    ``maximumDisplacementFactor`` (the world file's default)."""
+    ``maximumDisplacementFactor`` (the world file's default); ``force_x``: an expression (N) in
+    time ``t`` added to the x row of the h-vector, a force through the centroid."""
 
     shape: np.ndarray
     mass: float
@@ -67,6 +68,7 @@ class BodyOnFloor:
     break_time: float = 1.0
     displacement_factor: float = 0.5
     extra: dict[str, str] = field(default_factory=dict)
+    force_x: str = ""
 
     def write(self, folder: Path) -> Path:
         """Write the model files into ``folder`` (created); return the folder."""
@@ -94,7 +96,7 @@ class BodyOnFloor:
                                           [-FLOOR_HALF_WIDTH, -FLOOR_DEPTH], [FLOOR_HALF_WIDTH, -FLOOR_DEPTH]])),
             "model.gc": "b'body'x[t]\nb'body'y[t]\nb'body'Rz[t]\n",
             "model.mmx": "b'body'm\t0\t0\n0\tb'body'm\t0\n0\t0\tb'body'Jzz\n",
-            "model.hv": "b'body'm*c'gx\nb'body'm*c'gy\n0\n",
+            "model.hv": f"b'body'm*c'gx{'+' + self.force_x if self.force_x else ''}\nb'body'm*c'gy\n0\n",
             "model.me": (
                 "(b'body'm*(Derivative[1][b'body'x][t]^2+Derivative[1][b'body'y][t]^2)"
                 "+b'body'Jzz*Derivative[1][b'body'Rz][t]^2)/2"
@@ -158,6 +160,70 @@ def energy_residual(result: RunResult) -> np.ndarray:
 
 
 @dataclass
+class FreeBody:
+    """A free rigid body (generalized x, y, Rz): name, shape (k, 2) in the body frame (m, origin
+    at the centroid), mass (kg), centroidal inertia (kg m²), start pose and velocity."""
+
+    name: str
+    shape: np.ndarray
+    mass: float
+    inertia: float
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    velocity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+def write_free_bodies(folder: Path, bodies: list[FreeBody], pairs: list[tuple[str, str]], *, floor: bool,
+                      gravity: float, friction: float, restitution: float, dt_max: float, max_penetration: float,
+                      break_time: float) -> Path:
+    """Write a model of free bodies under gravity (0, -gravity) (m/s²), with the fixed floor
+    (named ``floor``) when asked; the contact pairs (body names) have friction c'mu and normal
+    restitution c'e; history every 10 maximum steps. Models with the same bodies, pairs and floor
+    share one compiled stepper."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    names = [body.name for body in bodies]
+    n = 3 * len(names)
+    files = {}
+    if floor:
+        files["floor.bdy"] = _body("floor", (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), {"mass": 1.0, "InertiaZZ": 1.0})
+        files["floor.exs"] = _shape(np.array([[FLOOR_HALF_WIDTH, 0.0], [-FLOOR_HALF_WIDTH, 0.0],
+                                              [-FLOOR_HALF_WIDTH, -FLOOR_DEPTH], [FLOOR_HALF_WIDTH, -FLOOR_DEPTH]]))
+    diagonal, hv, kinetic, potential = [], [], [], []
+    for body in bodies:
+        files[f"{body.name}.bdy"] = _body(body.name, body.position, body.velocity,
+                                          {"mass": body.mass, "InertiaZZ": body.inertia})
+        files[f"{body.name}.exs"] = _shape(body.shape)
+        b = f"b'{body.name}'"
+        diagonal += [f"{b}m", f"{b}m", f"{b}Jzz"]
+        hv += ["0", f"-{b}m*c'g", "0"]
+        kinetic.append(f"{b}m*(Derivative[1][{b}x][t]^2+Derivative[1][{b}y][t]^2)"
+                       f"+{b}Jzz*Derivative[1][{b}Rz][t]^2")
+        potential.append(f"{b}m*c'g*{b}y[t]")
+    contact = {"friction": "c'mu", "restitutionNormal": "c'e", "restitutionTangent": "0", "parameterNi": "0"}
+    files.update({
+        "model.wld": _ini({
+            "main": {
+                "numberOfGeneralizedCoordinates": str(n), "minimumTimestep": "1e-10",
+                "maximumTimestep": _num(dt_max), "maximumPenetration": _num(max_penetration),
+                "writeToHistoryMultipleOfMaximumTimestep": "10", "breakTime": _num(break_time),
+            },
+            "bodies": {f"body{k + 1}": f"{name}.bdy" for k, name in enumerate(names + ["floor"] * floor)},
+        }),
+        "model.gc": "".join(f"b'{name}'{c}[t]\n" for name in names for c in ("x", "y", "Rz")),
+        "model.mmx": "".join("\t".join(d if i == j else "0" for j in range(n)) + "\n"
+                             for i, d in enumerate(diagonal)),
+        "model.hv": "\n".join(hv) + "\n",
+        "model.me": "(" + "+".join(kinetic) + ")/2+" + "+".join(potential) + "\n",
+        "model.cns": f"c'g = {_num(gravity)}\nc'mu = {_num(friction)}\nc'e = {_num(restitution)}\n",
+        "model.cop": _ini({f"{a}-{b}": contact for a, b in pairs}),
+        "model.wtc": _ini({name: {"contactWatch": "all"} for name in names}),
+    })
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    return folder
+
+
+@dataclass
 class BoxStack:
     """Boxes (width, height (m), mass (kg)) stacked on the floor, each resting centred on the one
     below, the first on the floor; friction c'mu and restitution c'e at every contact; world
@@ -173,49 +239,13 @@ class BoxStack:
 
     def write(self, folder: Path) -> Path:
         """Write the model files into ``folder`` (created); return the folder."""
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
-        names = [f"box{k}" for k in range(len(self.boxes))]
-        n = 3 * len(names)
-        files = {
-            "floor.bdy": _body("floor", (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), {"mass": 1.0, "InertiaZZ": 1.0}),
-            "floor.exs": _shape(np.array([[FLOOR_HALF_WIDTH, 0.0], [-FLOOR_HALF_WIDTH, 0.0],
-                                          [-FLOOR_HALF_WIDTH, -FLOOR_DEPTH], [FLOOR_HALF_WIDTH, -FLOOR_DEPTH]])),
-        }
-        base = 0.0
-        diagonal, hv, kinetic, potential = [], [], [], []
-        for name, (width, height, mass) in zip(names, self.boxes):
-            inertia = mass * (width**2 + height**2) / 12.0
-            files[f"{name}.bdy"] = _body(name, (0.0, base + 0.5 * height, 0.0), (0.0, 0.0, 0.0),
-                                         {"mass": mass, "InertiaZZ": inertia})
-            files[f"{name}.exs"] = _shape(rectangle(width, height))
+        bodies, base = [], 0.0
+        for k, (width, height, mass) in enumerate(self.boxes):
+            bodies.append(FreeBody(f"box{k}", rectangle(width, height), mass, mass * (width**2 + height**2) / 12.0,
+                                   position=(0.0, base + 0.5 * height, 0.0)))
             base += height
-            b = f"b'{name}'"
-            diagonal += [f"{b}m", f"{b}m", f"{b}Jzz"]
-            hv += ["0", f"-{b}m*c'g", "0"]
-            kinetic.append(f"{b}m*(Derivative[1][{b}x][t]^2+Derivative[1][{b}y][t]^2)"
-                           f"+{b}Jzz*Derivative[1][{b}Rz][t]^2")
-            potential.append(f"{b}m*c'g*{b}y[t]")
-        contact = {"friction": "c'mu", "restitutionNormal": "c'e", "restitutionTangent": "0", "parameterNi": "0"}
+        names = [body.name for body in bodies]
         pairs = [(names[0], "floor")] + list(zip(names[1:], names[:-1]))
-        files.update({
-            "model.wld": _ini({
-                "main": {
-                    "numberOfGeneralizedCoordinates": str(n), "minimumTimestep": "1e-10",
-                    "maximumTimestep": _num(self.dt_max), "maximumPenetration": _num(self.max_penetration),
-                    "writeToHistoryMultipleOfMaximumTimestep": "10", "breakTime": _num(self.break_time),
-                },
-                "bodies": {f"body{k + 1}": f"{name}.bdy" for k, name in enumerate(names + ["floor"])},
-            }),
-            "model.gc": "".join(f"b'{name}'{c}[t]\n" for name in names for c in ("x", "y", "Rz")),
-            "model.mmx": "".join("\t".join(d if i == j else "0" for j in range(n)) + "\n"
-                                 for i, d in enumerate(diagonal)),
-            "model.hv": "\n".join(hv) + "\n",
-            "model.me": "(" + "+".join(kinetic) + ")/2+" + "+".join(potential) + "\n",
-            "model.cns": f"c'g = 9.81\nc'mu = {_num(self.friction)}\nc'e = {_num(self.restitution)}\n",
-            "model.cop": _ini({f"{a}-{b}": contact for a, b in pairs}),
-            "model.wtc": _ini({name: {"contactWatch": "all"} for name in names}),
-        })
-        for name, text in files.items():
-            (folder / name).write_text(text)
-        return folder
+        return write_free_bodies(folder, bodies, pairs, floor=True, gravity=9.81, friction=self.friction,
+                                 restitution=self.restitution, dt_max=self.dt_max,
+                                 max_penetration=self.max_penetration, break_time=self.break_time)
