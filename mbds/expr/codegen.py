@@ -169,7 +169,7 @@ def _driver() -> str:
             "from mbds.kernel.stepper import advance as _advance  # noqa: E402",
             "",
             "",
-            "@jit(cache=True)",
+            "@jit(cache=True, refcount=False)",
             "def advance(model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):",
             '    """Integrate this model (see mbds.kernel.stepper.advance)."""',
             f"    return _advance({functions}, model, settings, until, clock, q, u, rng, point_loss, point_interval,",

@@ -47,7 +47,7 @@ CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 
 
-@jit
+@jit(refcount=False)
 def inverse_mass_rows(L, rows, count, Y):
     """Y[i] = M^-1 rows[i] for the first ``count`` rows (L: Cholesky factor of M)."""
     for i in range(count):
@@ -72,7 +72,7 @@ def row_dot(A, i, v):
     return s
 
 
-@jit
+@jit(refcount=False)
 def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_flat):
     """Fill the matrix A (size m = na + 2 nh, row-major in A_flat[:m * m]) for the contacts
     active[:na]; return nh.
@@ -115,7 +115,7 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_
     return nh
 
 
-@jit
+@jit(refcount=False)
 def tangential_forces(active, na, stick, sign, laws, z, lam_n, lam_t):
     """Normal and tangential forces (or impulses) of the active contacts from an LCP solution z."""
     h = 0
@@ -192,7 +192,7 @@ def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, nc):
     return True
 
 
-@jit
+@jit(refcount=False)
 def solve(m, pb, settings, tol_lex, events, t):
     """Solve the LCP of size m held in pb.A_flat/pb.bvec; log failures; return True when solved."""
     if m == 0:
@@ -206,7 +206,7 @@ def solve(m, pb, settings, tol_lex, events, t):
     return False
 
 
-@jit
+@jit(refcount=False)
 def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active and the accelerations
     acc = M^-1 (h + W lambda)."""
@@ -236,7 +236,7 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
     return ok
 
 
-@jit
+@jit(refcount=False)
 def contact_forces(nc, gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """The contacts at rest (closed, not separating faster than the rest velocity), their forces
     and the accelerations; returns (number of contacts at rest, solved)."""

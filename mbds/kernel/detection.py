@@ -23,7 +23,7 @@ import numpy as np
 from mbds.kernel.jit import jit
 
 
-@jit
+@jit(refcount=False)
 def world_points(pose, points, point_start, out):
     """Body-frame ``points`` (P, 2) of every body moved to the world by ``pose`` (nb, 3)."""
     for b in range(pose.shape[0]):
@@ -34,7 +34,7 @@ def world_points(pose, points, point_start, out):
             out[i, 1] = pose[b, 1] + s * x + c * y
 
 
-@jit
+@jit(refcount=False)
 def bounding_boxes(world, point_start, out):
     """Axis-aligned box (xmin, ymin, xmax, ymax) of each body's world points into out (nb, 4)."""
     for b in range(point_start.shape[0] - 1):
@@ -49,7 +49,7 @@ def bounding_boxes(world, point_start, out):
             out[b, 3] = max(out[b, 3], world[i, 1])
 
 
-@jit
+@jit(refcount=False)
 def detect_contacts(
     world, point_start, boxes, pair_bodies, pair_resisting, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work,
@@ -83,7 +83,7 @@ def detect_contacts(
     return count
 
 
-@jit
+@jit(refcount=False)
 def _pair_contacts(
     p, vb, eb, world, point_start, boxes, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
@@ -203,7 +203,7 @@ def vertex_edge(world, i, j):
     return (tx * dx + ty * dy) / length, ty * dx - tx * dy, ty, -tx
 
 
-@jit
+@jit(refcount=False)
 def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_point):
     """Recompute xi, gap, normal and point of known vertex-edge contacts at new world points."""
     for k in range(count):
@@ -214,7 +214,7 @@ def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_po
 
 
 
-@jit
+@jit(refcount=False)
 def tracked_depth(world, contacts, count):
     """The deepest penetration (m) at the world points ``world`` of the first ``count`` known
     contacts whose vertex still lies over its edge (0 <= xi <= 1); 0 if none penetrates. Unlike

@@ -5,7 +5,7 @@ from __future__ import annotations
 from mbds.kernel.jit import jit
 
 
-@jit
+@jit(refcount=False)
 def log_event(events, t, code, a, b):
     """Append an event at time t (s) while the buffer has room."""
     data, count = events

@@ -12,7 +12,7 @@ from mbds.kernel.jit import jit
 from mbds.kernel.layout import AMBIENT, COOLING, HEATING, TEMP
 
 
-@jit
+@jit(refcount=False)
 def cool(point_heat, point_interval, dt):
     """Let every point with a heat model relax towards its ambient temperature over dt (s):
     T = T_a + (T - T_a) exp(-dt * COOLING), exact for a step with no heating."""

@@ -16,7 +16,7 @@ from mbds.kernel.layout import DRIVE_WORK, LOST, MAX_PEN
 from mbds.kernel.rollback import record
 
 
-@jit
+@jit(refcount=False)
 def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
            point_interval, back, events, t):
     """Compression and expansion LCPs over all closed contacts; updates u (and the relative
@@ -96,7 +96,7 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     return expanded
 
 
-@jit
+@jit(refcount=False)
 def _apply_impulses(active, na, imp_n, imp_t, YN, YT, u):
     """u += M^-1 (W_N imp_n + W_T imp_t) over the active contacts (impulses in N s)."""
     for a in range(na):
@@ -105,7 +105,7 @@ def _apply_impulses(active, na, imp_n, imp_t, YN, YT, u):
             u[k] += imp_n[c] * YN[c, k] + imp_t[c] * YT[c, k]
 
 
-@jit
+@jit(refcount=False)
 def _relative_velocities(active, na, rows, u):
     """Normal and tangential relative velocities (m/s) of the active contacts at u."""
     for a in range(na):

@@ -26,9 +26,18 @@ FASTMATH = _flag("MBDS_FASTMATH", False)
 BOUNDSCHECK = _flag("MBDS_BOUNDSCHECK", False)
 
 
-def jit(*args, **kwargs):
-    """``numba.njit`` with the project's settings; keyword arguments override them."""
+def jit(*args, refcount=True, **kwargs):
+    """``numba.njit`` with the project's settings; keyword arguments override them.
+
+    ``refcount=False`` compiles without numba's reference counting of arrays: no atomic
+    increment and decrement of every array argument, namedtuple field and view a function
+    touches (the larger part of the stepper's cost per step when it had them). Only for
+    functions that work on arrays their caller owns: they may not create an array or return
+    one (numba then refuses to compile them).
+    """
     options = {"cache": CACHE, "fastmath": FASTMATH, "boundscheck": BOUNDSCHECK, "nogil": True}
+    if not refcount:
+        options["_nrt"] = False
     options.update(kwargs)
     if args and callable(args[0]) and len(args) == 1:
         return numba.njit(**options)(args[0])

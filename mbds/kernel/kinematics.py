@@ -28,7 +28,7 @@ GENERALIZED = 1
 DEPENDENT = 2
 
 
-@jit
+@jit(refcount=False)
 def body_states(
     binding, binding_index, start_pose, carrier, offset, q, qd, dep_pos, dep_vel, dep_jac, dep_scalar,
     pose, vel, B, bhat, beta,
@@ -87,7 +87,7 @@ def body_states(
             beta[b, a] = beta[c, a]
 
 
-@jit
+@jit(refcount=False)
 def contact_kinematics(
     count, c_vertex_body, c_edge_body, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
     WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t,

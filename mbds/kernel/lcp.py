@@ -65,7 +65,7 @@ def lcp_workspace(n):
     return np.empty(n * n + 5 * n), np.empty(7 * n + 1, dtype=np.int64)
 
 
-@jit
+@jit(refcount=False)
 def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwork):
     """Solve LCP(M, q) into z, w (both (n,), overwritten); return (status, pivots).
 
@@ -74,9 +74,10 @@ def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwor
     the basic point of the last basis (z clipped at 0, w = M z + q) whatever the status.
     """
     n = q.shape[0]
-    if n == 0 or np.min(q) >= 0.0:
-        z[:] = 0.0
-        w[:] = q
+    if n == 0 or _min(q) >= 0.0:
+        for i in range(n):
+            z[i] = 0.0
+            w[i] = q[i]
         return SOLVED, 0
     G = fwork[: n * n].reshape((n, n))
     qbar = fwork[n * n : n * n + n]
@@ -105,7 +106,7 @@ def lemke(M, q, z, w, tol_piv_min, tol_piv_max, tol_lex, max_pivots, fwork, iwor
             tol_piv = min(10.0 * tol_piv, tol_piv_max)
 
 
-@jit
+@jit(refcount=False)
 def _attempt(
     M, q, tol_piv, tol_lex, max_pivots, G, qbar, d, dnext, col, ratio, basis, where, slot_col, slot_of, rows
 ):
@@ -127,7 +128,7 @@ def _attempt(
     where[z0] = -1
     # First pivot: z0 enters with column d = -e; the leaving row is the lexicographic minimum
     # of [q, I]: the smallest q_i, ties to the largest index.
-    limit = np.min(q) + tol_lex * _absmax(q)
+    limit = _min(q) + tol_lex * _absmax(q)
     r = 0
     for i in range(n):
         if q[i] <= limit:
@@ -232,7 +233,7 @@ def _attempt(
                 return PIVOT_FAILURE, pivots, rho
 
 
-@jit
+@jit(refcount=False)
 def _lexbreak(rows, ntied, ratio, d, dmax, G, where, slot_of, tol_lex):
     """Break a tie among rows[:ntied] on the columns of B^-1 in order (see module doc).
 
@@ -263,7 +264,19 @@ def _lexbreak(rows, ntied, ratio, d, dmax, G, where, slot_of, tol_lex):
     return -1
 
 
-@jit
+@jit(refcount=False)
+def _min(x):
+    """min_i x_i of a non-empty 1-d array; NaN if an entry is NaN (as np.min, which allocates)."""
+    m = x[0]
+    for v in x:
+        if v < m:
+            m = v
+        elif not v >= m:
+            return np.nan
+    return m
+
+
+@jit(refcount=False)
 def _absmax(x):
     """max_i |x_i| of a 1-d array; NaN if an entry is NaN."""
     m = 0.0
@@ -276,7 +289,7 @@ def _absmax(x):
     return m
 
 
-@jit
+@jit(refcount=False)
 def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
     """Write the basic point of the last basis (z clipped at 0, z0 dropped; w = M z + q).
 
@@ -286,7 +299,8 @@ def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
     path's status, or PIVOT_FAILURE if the path claimed a solution.
     """
     n = q.shape[0]
-    z[:] = 0.0
+    for i in range(n):
+        z[i] = 0.0
     nz = 0
     znorm = 0.0
     for i in range(n):

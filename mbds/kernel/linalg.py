@@ -7,7 +7,7 @@ import numpy as np
 from mbds.kernel.jit import jit
 
 
-@jit
+@jit(refcount=False)
 def cholesky(A, L):
     """Lower-triangular L with L L^T = A (A symmetric positive definite, (n, n)).
 
@@ -32,7 +32,7 @@ def cholesky(A, L):
     return True
 
 
-@jit
+@jit(refcount=False)
 def cholesky_solve(L, b, x):
     """x = A^-1 b for A = L L^T (b and x (n,); they may be the same array)."""
     n = L.shape[0]

@@ -22,7 +22,7 @@ SPEED, SPIN, ACCEL, SPIN_ACCEL = range(4)
 """Columns of the motion array: |v| (m/s), |omega| (rad/s), |a| (m/s^2), |alpha| (rad/s^2)."""
 
 
-@jit
+@jit(refcount=False)
 def body_motion(B, bhat, beta, u, acc, motion, keep_larger):
     """Fill motion (nb, 4) with the speeds of every body at velocities u and its accelerations
     at q'' = acc (rows of an acc that is not finite count as zero). With keep_larger, the
@@ -73,7 +73,7 @@ def _pair_rates(model, motion, k):
     return speed, accel
 
 
-@jit
+@jit(refcount=False)
 def detection_margins(model, motion, settings, margin):
     """Detection margin of each pair (m): maxPen + (1 + f) * (relative reach over a maximum
     step), f the larger ``maximumDisplacementFactor`` of the two bodies. A vertex farther than
@@ -85,7 +85,7 @@ def detection_margins(model, motion, settings, margin):
         margin[k] = settings[MAX_PEN] + (1.0 + factor) * (speed * dt + 0.5 * accel * dt * dt)
 
 
-@jit
+@jit(refcount=False)
 def reach_limit(model, motion, settings, margin, dt):
     """The longest step (s), at most dt, over which no point of any pair moves relative to the
     other body by more than the pair's margin less maxPen: vertices that detection did not

@@ -16,7 +16,7 @@ _MIX1 = np.uint64(0xBF58476D1CE4E5B9)
 _MIX2 = np.uint64(0x94D049BB133111EB)
 
 
-@jit
+@jit(refcount=False)
 def next_uint64(state):
     """The next 64-bit output; advances ``state`` (uint64 array of length 1)."""
     state[0] += _INCREMENT
@@ -26,7 +26,7 @@ def next_uint64(state):
     return z ^ (z >> np.uint64(31))
 
 
-@jit
+@jit(refcount=False)
 def uniform(state, low, high):
     """A float64 uniformly distributed in [low, high) (53 random bits)."""
     bits = next_uint64(state) >> np.uint64(11)

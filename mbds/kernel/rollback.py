@@ -122,7 +122,7 @@ def _add_point(point, share, direction, imp_n, imp_t, imp_x, imp_y, loss, angle,
         point_interval[point, ANGLE] = angle if direction > 0.0 else angle + np.pi
 
 
-@jit
+@jit(refcount=False)
 def begin_step(q, u, clock, point_interval, heated, back):
     """Keep the start of this step (slot LAST_SLOT), the starts of the steps before it moving one
     slot down (with the point temperatures when ``heated``), for going back."""
@@ -163,7 +163,7 @@ def forget_steps(back):
         back.record_count[s] = -1
 
 
-@jit
+@jit(refcount=False)
 def go_back(slot, q, u, clock, model, point_loss, point_interval, back):
     """Return to the start of the step kept in ``slot`` (LAST_SLOT: the last step, each slot below
     one step earlier), taking the records of the steps undone out of the accumulators and
@@ -175,16 +175,15 @@ def go_back(slot, q, u, clock, model, point_loss, point_interval, back):
     if model.pair_heated.any():
         for k in range(point_interval.shape[0]):
             point_interval[k, TEMP] = back.temperature[slot, k]
-    keep = np.empty(6)
-    for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
-        keep[j] = clock[c]
+    kept = (clock[STEPS], clock[IMPACTS], clock[REJECTED], clock[LCP_FAILURES], clock[OVER_PENETRATIONS],
+            clock[MAX_PENETRATION])
     for k in range(q.shape[0]):
         q[k] = back.q[slot, k]
         u[k] = back.u[slot, k]
     for k in range(clock.shape[0]):
         clock[k] = back.clock[slot, k]
-    for j, c in enumerate((STEPS, IMPACTS, REJECTED, LCP_FAILURES, OVER_PENETRATIONS, MAX_PENETRATION)):
-        clock[c] = keep[j]
+    (clock[STEPS], clock[IMPACTS], clock[REJECTED], clock[LCP_FAILURES], clock[OVER_PENETRATIONS],
+     clock[MAX_PENETRATION]) = kept
     forget_steps(back)
 
 

@@ -242,7 +242,7 @@ def advance(
             clock[NEXT_SAMPLE] = min(clock[NEXT_SAMPLE], t2)
 
 
-@jit
+@jit(refcount=False)
 def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
     """The next step (s): grown by 1.5 up to maximumTimestep; after a rejected step at most half
     of it; no longer than the reach limit of every pair (no vertex beyond a detection margin can
@@ -335,7 +335,7 @@ def _contact_rows(nc, contacts, model, bodies, rows):
                        rows.wbar_n, rows.wbar_t, rows.gd_n, rows.gd_t)
 
 
-@jit
+@jit(refcount=False)
 def _time_to_reach(distance, rate, accel):
     """The first time (s) at which a gap that is ``distance`` (m) above a target, changing at
     ``rate`` (m/s) with ``accel`` (m/s^2), reaches it; inf if it never does."""
