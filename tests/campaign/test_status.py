@@ -2,7 +2,6 @@
 text when the output is not a terminal."""
 
 import io
-import time
 
 from rich.console import Console
 
@@ -76,14 +75,13 @@ def test_bit_identical_replicates_are_reported(tmp_path):
     tree.close()
 
 
-def test_status_of_a_100000_task_plan_takes_under_2_s_of_cpu(tmp_path):
+def test_status_of_a_100000_task_plan_answers_with_its_size_and_the_first_chains(tmp_path):
+    """The plan is built without a path per task and the table is cut at 100 chains; how long
+    it takes is measured by benchmarks/status.py (docs/performance.md), not here."""
     gravity = ", ".join(f"{9 + k / 100:.2f}" for k in range(100))
     job = two_mass(tmp_path, f"c'gravity = {gravity}\nreplicates = 143\n")  # 100 x 143 chains of 7 tasks
-    start = time.process_time()
     plan = expand(job)
     out = io.StringIO()
     print_status(plan, Ledger.read(plan.folder), Console(file=out, width=160))
-    cpu = time.process_time() - start
     assert len(plan.tasks) == 100_100 and "0 of 100100 tasks done" in out.getvalue()
     assert "... and 14200 more chains (first 100 shown)" in out.getvalue()
-    assert cpu < 2.0, f"{cpu:.2f} s"
