@@ -42,8 +42,13 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
     panels = table["panel"].values
     columns = min(len(panels), 4)
     rows = -(-len(panels) // columns)
-    figure = Figure(figsize=(3.2 * columns + 1.2, 3.2 * rows + 0.6), layout="constrained")
-    axes = np.atleast_1d(figure.subplots(rows, columns, sharex=True, sharey=True, squeeze=False)).ravel()
+    # fixed margins in inches: a constrained layout of 64 panels takes seconds to compute
+    width, height = 3.2 * columns + 1.6, 3.2 * rows + 0.9
+    margins = {"left": 0.8 / width, "right": 1.0 - 1.2 / width, "bottom": 0.5 / height, "top": 1.0 - 0.6 / height,
+               "wspace": 0.3, "hspace": 0.35}
+    figure = Figure(figsize=(width, height))
+    axes = np.atleast_1d(figure.subplots(rows, columns, sharex=True, sharey=True, squeeze=False,
+                                         gridspec_kw=margins)).ravel()
     shades = VERSION_COLORS(np.linspace(0.0, 1.0, len(shown)))
     for k, (ax, panel) in enumerate(zip(axes, panels)):
         for j, version in enumerate(shown):
@@ -56,8 +61,9 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
     for ax in axes[len(panels):]:
         ax.set_visible(False)
     bar = ScalarMappable(Normalize(shown[0], shown[-1] if len(shown) > 1 else shown[0] + 1), VERSION_COLORS)
-    figure.colorbar(bar, ax=axes[: len(panels)].tolist(), label="version")
-    figure.suptitle(f"{body} worn: {title}")
+    figure.colorbar(bar, cax=figure.add_axes((1.0 - 0.9 / width, margins["bottom"], 0.15 / width,
+                                             margins["top"] - margins["bottom"])), label="version")
+    figure.suptitle(f"{body} worn: {title}", y=1.0 - 0.3 / height, va="center")
     return figure
 
 
