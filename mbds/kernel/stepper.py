@@ -196,14 +196,14 @@ def advance(
             if gap <= CLOSED_FRACTION * settings[MAX_PEN] and rate < 0.0 and (
                     rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN]):
                 impacting = True
-                counted = counted or rows.gd_n[i] < -rest
+                counted = counted or rate < -rest
+        if counted:
+            clock[IMPACTS] += 1.0
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
                             point_loss, point_interval, back, events, t)
-        if counted:
-            clock[IMPACTS] += 1.0
-        if impacting:  # everything that depends on the velocities, again at the post-impact state
+            # everything that depends on the velocities, again at the post-impact state
             _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
             _contact_rows(nc, contacts, model, bodies, rows)
             contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
