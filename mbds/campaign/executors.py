@@ -26,11 +26,11 @@ import time
 from concurrent.futures import Future, ProcessPoolExecutor
 
 from mbds.campaign.plan import Task
-from mbds.campaign.tasks import run_task
+from mbds.campaign.tasks import import_for, run_task
 
 POLL = 0.005
 """Sleep between polls of an idle scheduler or worker (s): MPI's blocking receive busy-waits."""
-TASK, RESULT, STOP, QUIT = 1, 2, 3, 4  # MPI message tags
+TASK, RESULT, STOP, QUIT, PREPARE = 1, 2, 3, 4, 5  # MPI message tags
 
 
 class Sequential:
@@ -149,6 +149,11 @@ class Ranks:
         for rank in self._busy:
             self._comm.send(None, dest=rank, tag=STOP)
 
+    def prepare(self, kinds) -> None:
+        """Let the workers import what tasks of ``kinds`` need while this process warms up."""
+        for rank in range(1, self._comm.Get_size()):
+            self._comm.send(sorted(kinds), dest=rank, tag=PREPARE)
+
     def close(self) -> None:
         for rank in range(1, self._comm.Get_size()):
             self._comm.send(None, dest=rank, tag=QUIT)
@@ -172,7 +177,9 @@ def serve(comm, stopping) -> None:
         message = comm.recv(source=0, tag=status.Get_tag())
         if status.Get_tag() == QUIT:
             return
-        if status.Get_tag() == TASK:
+        if status.Get_tag() == PREPARE:
+            import_for(message)
+        elif status.Get_tag() == TASK:
             comm.send((message.id, run_task(message, told_to_stop)), dest=0, tag=RESULT)
 
 

@@ -34,6 +34,7 @@ layers it needs when it runs, so that many worker ranks starting at once start q
 from __future__ import annotations
 
 import hashlib
+import importlib
 import time
 import warnings
 from collections.abc import Callable
@@ -51,12 +52,16 @@ STOPPED = "the campaign was told to stop"
 PERFORMERS: dict[str, Callable[[Task, Callable[[], bool] | None], dict]] = {}
 """Task kind -> function(task, stop) performing it: the result of :func:`run_task` without
 ``wall``, ``compiled`` and ``warnings``."""
+MODULES: dict[str, tuple[str, ...]] = {}
+"""Task kind -> the modules its performer imports when it runs (see :func:`import_for`)."""
 
 
-def register_task_kind(kind: str):
-    """Function decorator: ``function(task, stop) -> dict`` performs the tasks of ``kind``."""
+def register_task_kind(kind: str, modules: tuple[str, ...] = ()):
+    """Function decorator: ``function(task, stop) -> dict`` performs the tasks of ``kind``,
+    importing ``modules`` when it runs."""
     def add(function):
         PERFORMERS[kind] = function
+        MODULES[kind] = modules
         return function
     return add
 
@@ -66,6 +71,15 @@ def performer(kind: str) -> Callable:
     if kind not in PERFORMERS:
         import mbds.campaign.dapbc_tasks  # noqa: F401  (registers the DAP_BC run)
     return PERFORMERS[kind]
+
+
+def import_for(kinds) -> None:
+    """Import what performing tasks of ``kinds`` needs: a worker rank does it while rank 0
+    expands the plan and warms up, so that its first task does not pay for the imports."""
+    for kind in sorted(kinds):
+        performer(kind)  # a kind registered by another module: that module is imported now
+        for module in MODULES[kind]:
+            importlib.import_module(module)
 
 
 def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
@@ -85,7 +99,12 @@ def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:
             **({"warnings": found} if found else {})}
 
 
-@register_task_kind(PREPARE)
+SIMULATION = ("mbds.data.history", "mbds.kernel.stepper", "mbds.model.load", "mbds.simulation.job",
+              "mbds.simulation.version_run", "mbds.simulation.versions")
+"""The modules a run (and the model it loads and compiles) imports."""
+
+
+@register_task_kind(PREPARE, ("mbds.simulation.versions",))
 def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """The chain's model folder (a variant's: the model files with its values written in) and
     its version 000."""
@@ -100,7 +119,7 @@ def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     return {"state": DONE, "output": str(version)}
 
 
-@register_task_kind(RUN)
+@register_task_kind(RUN, SIMULATION)
 def _run(task: Task, stop: Callable[[], bool] | None) -> dict:
     """Run the version (or replicate) in ``task.folder`` unless its run is complete already."""
     from mbds.data.history import FILE_NAME as HISTORY
@@ -135,7 +154,7 @@ def result_digest(record) -> str:
     return digest.hexdigest()[:16]
 
 
-@register_task_kind(WEAR)
+@register_task_kind(WEAR, SIMULATION)
 def _wear(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """Version N + 1, worn by the losses of N's run (the mean over its replicates' runs)."""
     from mbds.simulation.job import next_version

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -145,14 +144,12 @@ def run(
     """Run the campaign's tasks: on MPI ranks under mpiexec or srun (rank 0 schedules), else in
     --workers processes. Running it again resumes the campaign."""
     from mbds.campaign import executors
+    from mbds.cli.mpi_world import abort_on_uncaught, mpi_world, serve_worker
 
-    comm = _mpi_world()
-    _abort_on_uncaught(comm)
+    comm = mpi_world()
+    abort_on_uncaught(comm)
     if comm is not None and comm.Get_rank() > 0:
-        from mbds.campaign.run import stop_signals
-
-        with stop_signals() as stopping:
-            executors.serve(comm, stopping)
+        serve_worker(comm)
         return
     ranks = executors.Ranks(comm) if comm is not None else None
     try:
@@ -211,6 +208,8 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
 
     campaign_cache(plan, private_cache)
     report = CampaignProgress(len(plan.tasks), done_count(plan, Ledger.read(plan.folder)))
+    if ranks is not None:
+        ranks.prepare({task.kind for task in plan.tasks})
     with stop_signals() as stopping:
         report.phase(f"warm-up: compiling the models of {max(len(plan.variants), 1)} variant(s), "
                      "or loading them from the cache")
@@ -236,58 +235,6 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
                 if ranks is None:
                     executor.close()
     return outcome
-
-
-LAUNCHER_SIZES = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "MV2_COMM_WORLD_SIZE", "PMIX_SIZE")
-"""Environment variables in which MPI launchers (MPICH's Hydra, Intel MPI, Open MPI, MVAPICH,
-PMIx) tell each process how many ranks they started; Slurm's srun: ``SLURM_STEP_NUM_TASKS``."""
-
-
-def launcher_ranks(environ=os.environ) -> int:
-    """How many ranks the launcher (mpiexec, mpirun, srun) started, from its environment; 1 when
-    the process was not started by one."""
-    names = [*LAUNCHER_SIZES, *(["SLURM_STEP_NUM_TASKS"] if "SLURM_STEP_ID" in environ else [])]
-    for name in names:
-        value = environ.get(name, "")
-        if value.isdigit():
-            return int(value)
-    return 1
-
-
-def _mpi_world():
-    """MPI's world communicator when launched on more than one rank (``mbds-campaign run`` or
-    ``python -m mpi4py -m mbds.cli.campaign run`` under mpiexec or srun), else None.
-
-    A process that its launcher started as one of several ranks but that finds a world of one
-    (mpi4py built against another MPI library than the launcher's) stops with exit 2 instead of
-    running the whole campaign alone beside its copies."""
-    asked = launcher_ranks()
-    if asked == 1 and "mpi4py.run" not in sys.modules:
-        return None
-    from mpi4py import MPI
-
-    size = MPI.COMM_WORLD.Get_size()
-    if size == 1 and asked > 1:
-        print(f"error: the launcher started {asked} ranks, but MPI sees a world of 1 in this process: "
-              "mpi4py was built against another MPI library than the launcher's (use the mpiexec "
-              "of the MPI that mpi4py uses, e.g. the one beside this Python)", file=sys.stderr)
-        raise typer.Exit(2)
-    return MPI.COMM_WORLD if size > 1 else None
-
-
-def _abort_on_uncaught(comm) -> None:
-    """Make an uncaught exception in this rank abort all ranks (what ``python -m mpi4py`` does),
-    so that a failing rank never leaves the others waiting."""
-    if comm is None or "mpi4py.run" in sys.modules:
-        return
-    previous = sys.excepthook
-
-    def abort(kind, value, trace):
-        previous(kind, value, trace)
-        sys.stderr.flush()
-        comm.Abort(1)
-
-    sys.excepthook = abort
 
 
 if __name__ == "__main__":

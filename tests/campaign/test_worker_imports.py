@@ -19,3 +19,32 @@ def test_worker_path_imports_no_heavy_package():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
     assert result.stdout.split() == [], f"a worker imports {result.stdout.strip()} before any task runs"
 
+
+
+def test_a_worker_rank_of_the_console_script_skips_the_command_line_parser():
+    """``mpiexec -n N mbds-campaign run JOB``: ranks > 0 go from the console script to serving
+    tasks without importing typer or rich; rank 0 and help requests take the parser's path."""
+    code = ("import sys\nfrom mbds.cli import campaign_entry, mpi_world\nimport mbds.campaign.executors\n"
+            "print(campaign_entry._worker_rank(sys.argv[1:]), "
+            "' '.join(m for m in ('typer', 'rich', 'sympy', 'xarray') if m in sys.modules) or '-')")
+
+    def ask(rank: str, *argv: str) -> list[str]:
+        env = {**os.environ, "PYTHONPATH": str(ROOT), "PMI_SIZE": "4", "PMI_RANK": rank}
+        done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, env=env, check=True)
+        return done.stdout.split()
+
+    assert ask("2", "run", "wear.job") == ["True", "-"]
+    assert ask("0", "run", "wear.job")[0] == "False"
+    assert ask("2", "run", "--help")[0] == "False"
+    assert ask("2", "status", "wear.job")[0] == "False"
+
+
+def test_workers_import_what_tasks_need_when_told():
+    """Rank 0 tells the workers the plan's task kinds before its warm-up: importing for a run
+    loads the simulation layers and the kernel, so the first task does not wait for them."""
+    code = ("import sys\nfrom mbds.campaign.tasks import import_for\nimport_for(['run'])\n"
+            "print(' '.join(m for m in ('mbds.kernel.stepper', 'mbds.simulation.version_run', 'numba', 'xarray') "
+            "if m in sys.modules))")
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert done.stdout.split() == ["mbds.kernel.stepper", "mbds.simulation.version_run", "numba", "xarray"]

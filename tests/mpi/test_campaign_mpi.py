@@ -86,13 +86,18 @@ def test_a_rank_alone_in_its_world_refuses_to_run(tmp_path):
 
 
 def test_launcher_ranks_from_environment():
-    from mbds.cli.campaign import launcher_ranks
+    from mbds.cli.mpi_world import launcher_rank, launcher_ranks
 
     assert launcher_ranks({}) == 1
     assert launcher_ranks({"PMI_SIZE": "4"}) == 4
     assert launcher_ranks({"OMPI_COMM_WORLD_SIZE": "16"}) == 16
     assert launcher_ranks({"SLURM_STEP_NUM_TASKS": "8"}) == 1  # an allocation, not an srun step
     assert launcher_ranks({"SLURM_STEP_NUM_TASKS": "8", "SLURM_STEP_ID": "0"}) == 8
+    assert launcher_rank({}) == 0
+    assert launcher_rank({"PMI_RANK": "3"}) == 3
+    assert launcher_rank({"OMPI_COMM_WORLD_RANK": "0"}) == 0
+    assert launcher_rank({"SLURM_PROCID": "2"}) == 0  # a batch script, not an srun step
+    assert launcher_rank({"SLURM_PROCID": "2", "SLURM_STEP_ID": "0"}) == 2
 
 
 WOODPECKER = """[main]
