@@ -40,9 +40,13 @@ REST_FRACTION = 0.01
 dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration. A
 closed contact approaching slower than that (round-off, or the drift of a pivoting contact)
 still gets its velocity from the impact laws, but this does not count as an impact."""
-STICK_FRACTION = 1e-3
+STICK_FRACTION = 1.0
 """A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
-stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero."""
+stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero.
+Where a stick candidate sticks, its remaining sliding speed decays with the time constant
+STICK_RELAXATION maximum steps (see :func:`accelerations`)."""
+STICK_RELAXATION = 10.0
+"""Time constant (in maximum steps) of the decay of a sticking contact's remaining sliding speed."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 
@@ -219,7 +223,10 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
         pb.bvec[a] = row_dot(rows.WN, active[a], dyn.minv_h) + rows.wbar_n[active[a]]
     for g in range(nh):
         c = active[pb.hrow[g]]
-        pb.bvec[na + g] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
+        # sticking means g_T'' = -g_T' / (STICK_RELAXATION dt_max): the speed left below the stick
+        # threshold decays instead of drifting on
+        pb.bvec[na + g] = (row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
+                           + rows.gd_t[c] / (STICK_RELAXATION * settings[DT_MAX]))
         pb.bvec[na + nh + g] = 0.0
     ok = solve(m, pb, settings, tol_lex, events, t)
     for a in range(na):

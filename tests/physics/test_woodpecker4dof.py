@@ -28,12 +28,12 @@ def run():
 
 def test_it_runs_ten_seconds_and_keeps_descending(run):
     """No jam: the sleeve slides down in every second of the run, at the same mean speed over
-    every pair of swings of the last seven seconds (within 4 %), and stays within its clearance
-    sideways."""
+    every pair of swings of the last five seconds (within 4 %; the first five are its transient),
+    and stays within its clearance sideways."""
     assert run.complete and run.time[-1] == pytest.approx(10.0)
     x, y = run.q[:, 0], run.q[:, 1]
     assert -np.diff(np.interp(np.arange(0.0, 10.5, 1.0), run.time, y)).min() > 0.05  # m in each second
-    starts = swing_starts(run, 3.0)[::2]
+    starts = swing_starts(run, 5.0)[::2]
     speeds = -np.diff(np.interp(starts, run.time, y)) / np.diff(starts)
     assert np.abs(speeds / speeds.mean() - 1.0).max() < 0.04
     assert np.abs(x).max() <= CLEARANCE + 2e-6  # m: maximumPenetration allowed on each side
