@@ -21,7 +21,7 @@ createNextVersionAtEnd = 1
 [campaign]
 replicates = 3
 mode = ensemble
-seed = 5
+seed = 3
 world.breakTime = 0.5
 """
 
@@ -41,7 +41,9 @@ def test_ensemble_wear_uses_the_mean_of_the_replicates_runs(tmp_path):
         with xr.open_dataset(plan.folder / "v00" / "000" / f"r{k}" / "history.nc") as history:
             bird = history["point_body"].values == list(history["body"].values).index("bird")
             losses.append(history["point_lost_work"].values[bird])
-    assert len({run[0] for run in losses}) == 3  # point 0, the watched one: three different losses
+    # point 0, the watched one: three different losses (the draws of this seed decide pivots that
+    # change it; most draws leave the bird's losses alone)
+    assert len({run[0] for run in losses}) == 3
     mean = (losses[0] + losses[1] + losses[2]) / 3  # by hand
     with xr.open_dataset(plan.folder / "v00" / "001" / WEAR_FILE) as record:
         assert record.attrs["reshaped_bodies"] == "bird"
