@@ -11,7 +11,9 @@ only.
 before any task starts, so that no worker compiles. Compiled models live in the user's cache
 (:func:`mbds.expr.cache.default_cache_dir`, keyed by the generated source's hash), so a new
 campaign of models compiled before starts warm; ``campaign_cache(plan, private=True)`` keeps
-them in ``<campaign folder>/.cache`` instead.
+them in ``<campaign folder>/.cache`` instead. ``mbds-campaign run`` uses ``warm_up_first(plan)``:
+the first variant's structure is made ready before the loop, the others' before their first
+runs, from the structure each chain's prepare task found (:mod:`mbds.campaign.structures`).
 
 ``stop_signals()`` turns SIGTERM and SIGUSR1 (Slurm's warning before the time limit) and Ctrl-C
 into a flag: the campaign stops taking tasks and the running ones stop, write what they have and
@@ -26,14 +28,13 @@ import signal
 import socket
 import threading
 import time
-import warnings
 from dataclasses import dataclass, field
 
 from mbds.campaign.executors import POLL
 from mbds.campaign.ledger import DONE, FAILED, PENDING, RUNNING, Ledger, utc_now
-from mbds.campaign.plan import DAP_BC, Plan, done_count, ready_tasks
+from mbds.campaign.plan import DAP_BC, RUN, Plan, done_count, ready_tasks
 from mbds.campaign.priority import by_remaining_work
-from mbds.errors import ModelWarning
+from mbds.campaign.structures import Structures
 
 CACHE_FOLDER = ".cache"
 STOP_SIGNALS = ("SIGTERM", "SIGUSR1", "SIGINT")
@@ -68,36 +69,39 @@ def warm_up(plan: Plan) -> int:
         from mbds.campaign.dapbc_plan import warm_up_dapbc
 
         return warm_up_dapbc(plan)
-    from mbds.campaign.variants import variant_files
-    from mbds.expr.cache import source_hash
-    from mbds.expr.codegen import generate_source
-    from mbds.io.folder import read_model_files
-    from mbds.model.load import assemble_model
-    from mbds.simulation.buffers import RunSettings
-    from mbds.simulation.run import simulate
-
-    base = read_model_files(plan.job.world_path())
-    seen = set()
-    with warnings.catch_warnings():  # the runs report the model's warnings
-        warnings.simplefilter("ignore", ModelWarning)
-        for variant in plan.variants or [None]:
-            files = base if variant is None else variant_files(base, variant)[0]
-            model = assemble_model(files)
-            key = source_hash(generate_source(model.expressions))
-            if key not in seen:
-                seen.add(key)
-                simulate(model, RunSettings(break_time=0.0))
-    return len(seen)
+    structures = Structures(plan)
+    for variant in plan.variants or [None]:
+        structures.make_ready(variant)
+    return structures.count
 
 
-def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1) -> Outcome:
+def warm_up_first(plan: Plan):
+    """The warm-up of ``mbds-campaign run``: the first variant's model structure made ready here,
+    and the :class:`~mbds.campaign.structures.Structures` that make the others' ready as their
+    runs come (``run_campaign``'s ``structures``), so the workers start at once; a DAP_BC plan
+    (one compiled model for all variants) is warmed up whole, and None returned."""
+    if plan.model == DAP_BC:
+        warm_up(plan)
+        return None
+    structures = Structures(plan)
+    structures.make_ready(plan.variants[0] if plan.variants else None)
+    return structures
+
+
+def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1, structures=None) -> Outcome:
     """Run the campaign's ready tasks on ``executor`` (:mod:`mbds.campaign.executors`, with
     ``workers`` processes running tasks) until none is left or ``stopping()``;
     ``progress(task_id, result, done, running)`` after each result and ``progress(None, None,
     done, running)`` after tasks are handed out, if given (``done``: tasks done in all). The run (host, workers, start, end)
-    is added to the ledger's ``campaign["runs"]``."""
+    is added to the ledger's ``campaign["runs"]``. With ``structures``
+    (:class:`mbds.campaign.structures.Structures`), each run's model structure is made ready
+    in this process before the run is handed out (instead of :func:`warm_up` before the loop)."""
     ledger = Ledger.load(plan.folder)
     ledger.bind(plan)
+    by_id = {task.id: task for task in plan.tasks} if structures is not None else {}
+    for task_id, entry in ledger.tasks.items() if structures is not None else ():
+        if task_id in by_id:
+            structures.learn(by_id[task_id], entry)
     outcome = Outcome(start=utc_now())
     running: set[str] = set()
     told = False
@@ -106,6 +110,8 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
         for task_id, result in executor.results():
             running.discard(task_id)
             ledger.mark(task_id, save=False, **result)
+            if structures is not None:
+                structures.learn(by_id[task_id], result)
             changed = True
             {DONE: outcome.done, FAILED: outcome.failed, PENDING: outcome.stopped}[result["state"]].append(task_id)
             if progress is not None:
@@ -117,6 +123,8 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             for task in by_remaining_work(plan, ledger, ready_tasks(plan, ledger)):
                 if executor.free() <= 0 or stopping():
                     break
+                if structures is not None and task.kind == RUN:
+                    structures.make_ready(task.variant)
                 running.add(task.id)
                 ledger.mark(task.id, RUNNING, save=executor.inline, **executor.where())
                 executor.submit(task)  # the ledger is saved after the tasks are handed out

@@ -44,6 +44,7 @@ import numpy as np
 from mbds.campaign.compiles import counted_compiles
 from mbds.campaign.ledger import DONE, FAILED, PENDING
 from mbds.campaign.plan import PREPARE, RUN, WEAR, Task
+from mbds.campaign.structures import structure
 from mbds.campaign.variants import variant_files
 from mbds.errors import ModelError, ModelWarning
 from mbds.io.folder import read_model_files, version_name, version_number
@@ -104,19 +105,21 @@ SIMULATION = ("mbds.data.history", "mbds.kernel.stepper", "mbds.model.load", "mb
 """The modules a run (and the model it loads and compiles) imports."""
 
 
-@register_task_kind(PREPARE, ("mbds.simulation.versions",))
+@register_task_kind(PREPARE, SIMULATION)
 def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     """The chain's model folder (a variant's: the model files with its values written in) and
-    its version 000."""
+    its version 000; ``structure``: the key of the compiled model its runs need
+    (:mod:`mbds.campaign.structures`)."""
     from mbds.simulation.versions import create_model_copy, ensure_version
 
+    files = read_model_files(task.source)
     if task.variant is None:
         version = ensure_version(task.folder, 0, task.source)
     else:
-        changed, texts = variant_files(read_model_files(task.source), task.variant)
-        create_model_copy(task.folder, changed, 0, texts)
+        files, texts = variant_files(files, task.variant)
+        create_model_copy(task.folder, files, 0, texts)
         version = ensure_version(task.folder, 0)
-    return {"state": DONE, "output": str(version)}
+    return {"state": DONE, "output": str(version), "structure": structure(files)}
 
 
 @register_task_kind(RUN, SIMULATION)

@@ -203,7 +203,7 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
     from mbds.campaign import executors
     from mbds.campaign.ledger import Ledger
     from mbds.campaign.plan import done_count
-    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up
+    from mbds.campaign.run import campaign_cache, run_campaign, stop_signals, warm_up_first
     from mbds.cli.campaign_progress import CampaignProgress
 
     campaign_cache(plan, private_cache)
@@ -211,9 +211,11 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
     if ranks is not None:
         ranks.prepare({task.kind for task in plan.tasks})
     with stop_signals() as stopping:
-        report.phase(f"warm-up: compiling the models of {max(len(plan.variants), 1)} variant(s), "
-                     "or loading them from the cache")
-        report.phase_done(f"warm-up: {warm_up(plan)} distinct model(s) ready")
+        report.phase("warm-up: compiling the model, or loading it from the cache")
+        structures = warm_up_first(plan)
+        report.phase_done(f"warm-up: {structures.count if structures else 1} distinct model(s) ready"
+                          + (", the other variants' checked as their chains are prepared"
+                             if structures and len(plan.variants) > 1 else ""))
         if ranks is not None:
             executor, workers = ranks, ranks.free()
         elif workers > 1:
@@ -230,7 +232,7 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
 
         with report:
             try:
-                outcome = run_campaign(plan, executor, stopping, progress, workers)
+                outcome = run_campaign(plan, executor, stopping, progress, workers, structures)
             finally:
                 if ranks is None:
                     executor.close()
