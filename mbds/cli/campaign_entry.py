@@ -3,10 +3,16 @@
 A worker rank of ``mbds-campaign run JOB`` under an MPI launcher (rank > 0 in the launcher's
 environment) serves tasks at once, without importing the command-line parser (typer, rich):
 its arguments are rank 0's to read. Every other use goes to :data:`mbds.cli.campaign.app`.
+
+When the command is over, the process leaves without the interpreter's teardown (0.8-1.1 s
+once numba, sympy and xarray are loaded, measured): it flushes its streams, ends MPI if it
+started it, and exits with the command's code (:func:`_leave`).
 """
 
 from __future__ import annotations
 
+import logging
+import os
 import sys
 
 HELP = ("--help", "-h")
@@ -27,7 +33,26 @@ def main() -> None:
         if comm is not None:
             abort_on_uncaught(comm)
             serve_worker(comm)
-            return
+            _leave(0)
     from mbds.cli.campaign import app
 
-    app()
+    try:
+        app()
+    except SystemExit as done:
+        _leave(done.code)
+    _leave(0)
+
+
+def _leave(code) -> None:
+    """Exit with ``code`` (as SystemExit reads it) once the streams are flushed and MPI, if this
+    process started it, is finalized; skip the interpreter's teardown."""
+    status = code if isinstance(code, int) else (0 if code is None else 1)
+    if code is not None and not isinstance(code, int):
+        print(code, file=sys.stderr)
+    logging.shutdown()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    mpi = sys.modules.get("mpi4py.MPI")
+    if mpi is not None and mpi.Is_initialized() and not mpi.Is_finalized():
+        mpi.Finalize()
+    os._exit(status)

@@ -48,3 +48,13 @@ def test_workers_import_what_tasks_need_when_told():
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
     assert done.stdout.split() == ["mbds.kernel.stepper", "mbds.simulation.version_run", "numba", "xarray"]
+
+
+def test_the_console_script_exits_with_the_commands_code_and_its_output_flushed(tmp_path):
+    """The console script leaves without the interpreter's teardown: the exit code and everything
+    printed must survive that."""
+    console = Path(sys.executable).parent / "mbds-campaign"
+    done = subprocess.run([str(console), "status", str(tmp_path / "none.job")], capture_output=True, text=True)
+    assert done.returncode == 2 and "none.job" in done.stderr
+    done = subprocess.run([str(console), "--help"], capture_output=True, text=True)
+    assert done.returncode == 0 and "Run-in wear campaigns" in done.stdout
