@@ -239,5 +239,7 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
     return outcome
 
 
-if __name__ == "__main__":
-    app()
+if __name__ == "__main__":  # python -m mbds.cli.campaign (or python -m mpi4py -m mbds.cli.campaign): as the console script
+    from mbds.cli.campaign_entry import main as console_script
+
+    console_script()
