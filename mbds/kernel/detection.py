@@ -29,9 +29,30 @@ def world_points(pose, points, point_start, out):
     for b in range(pose.shape[0]):
         c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
         for i in range(point_start[b], point_start[b + 1]):
-            x, y = points[i, 0], points[i, 1]
-            out[i, 0] = pose[b, 0] + c * x - s * y
-            out[i, 1] = pose[b, 1] + s * x + c * y
+            _world_point(pose, b, c, s, points, i, out)
+
+
+@jit(inline="always")
+def _world_point(pose, b, c, s, points, i, out):
+    """out[i] = point i of body b moved to the world (c, s: cos and sin of its angle)."""
+    x, y = points[i, 0], points[i, 1]
+    out[i, 0] = pose[b, 0] + c * x - s * y
+    out[i, 1] = pose[b, 1] + s * x + c * y
+
+
+@jit(refcount=False)
+def contact_points(pose, points, c_vertex_body, c_vertex, c_edge_body, c_edge, index, count, out):
+    """The world points (into ``out``, as :func:`world_points` computes them) of the vertex and
+    the edge's two points of the contacts index[:count]; the other points are left as they
+    are."""
+    for k in range(count):
+        i = index[k]
+        b = c_vertex_body[i]
+        _world_point(pose, b, np.cos(pose[b, 2]), np.sin(pose[b, 2]), points, c_vertex[i], out)
+        b = c_edge_body[i]
+        c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
+        _world_point(pose, b, c, s, points, c_edge[i], out)
+        _world_point(pose, b, c, s, points, c_edge[i] + 1, out)
 
 
 @jit(refcount=False)
@@ -204,14 +225,15 @@ def vertex_edge(world, i, j):
 
 
 @jit(refcount=False)
-def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_point):
-    """Recompute xi, gap, normal and point of known vertex-edge contacts at new world points."""
-    for k in range(count):
+def contact_geometry(world, c_vertex, c_edge, index, count, c_xi, c_gap, c_normal, c_point):
+    """Recompute xi, gap, normal and point of the known vertex-edge contacts index[:count] at
+    new world points."""
+    for c in range(count):
+        k = index[c]
         i = c_vertex[k]
         c_xi[k], c_gap[k], c_normal[k, 0], c_normal[k, 1] = vertex_edge(world, i, c_edge[k])
         c_point[k, 0] = world[i, 0]
         c_point[k, 1] = world[i, 1]
-
 
 
 @jit(refcount=False)

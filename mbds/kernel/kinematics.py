@@ -89,13 +89,15 @@ def body_states(
 
 @jit(refcount=False)
 def contact_kinematics(
-    count, c_vertex_body, c_edge_body, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
+    index, count, c_vertex_body, c_edge_body, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
     WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t,
 ):
-    """Force directions, velocity offsets and relative velocities of the first ``count``
-    contacts: WN, WT (count, n); what_n, what_t, wbar_n, wbar_t, gd_n, gd_t (count,)."""
+    """Force directions, velocity offsets and relative velocities of the contacts
+    index[:count]: rows of WN, WT (cap, n) and entries of what_n, what_t, wbar_n, wbar_t, gd_n,
+    gd_t (cap,)."""
     n = WN.shape[1]
-    for i in range(count):
+    for c in range(count):
+        i = index[c]
         a = c_vertex_body[i]
         b = c_edge_body[i]
         if carrier[a] >= 0:

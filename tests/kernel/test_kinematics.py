@@ -59,7 +59,7 @@ def contact_state(q, qd, t):
     _, normal, point = gap(q, t)
     out = [np.empty((1, 4)), np.empty((1, 4))] + [np.empty(1) for _ in range(6)]
     contact_kinematics(
-        1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
+        np.array([0]), 1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
     )
     return out
 
