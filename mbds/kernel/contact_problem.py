@@ -228,6 +228,10 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
     acc = M^-1 (h + W lambda)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
+    if na == 0:
+        for k in range(n):
+            acc[k] = dyn.minv_h[k]
+        return True
     nh = build_matrix(active, na, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                       pb.A_flat)
     m = na + 2 * nh

@@ -94,8 +94,12 @@ def detect_contacts(
             vertex_body = pair_bodies[p, 1 - side]
             if not pair_resisting[p, side]:
                 continue
+            reach = skin[edge_body] + margin[p]
+            x0, y0, x1, y1 = _overlap(boxes, vertex_body, edge_body, reach)
+            if x0 > x1 or y0 > y1:  # no vertex can be near an edge
+                continue
             count = _pair_contacts(
-                p, vertex_body, edge_body, world, point_start, boxes, skin[edge_body], margin[p],
+                p, vertex_body, edge_body, world, point_start, x0, y0, x1, y1, skin[edge_body], margin[p],
                 c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
                 work, count, capacity,
             )
@@ -104,19 +108,23 @@ def detect_contacts(
     return count
 
 
+@jit(inline="always")
+def _overlap(boxes, vb, eb, reach):
+    """(x0, y0, x1, y1): the part of the vertex body's box within ``reach`` (m) of the edge
+    body's box; empty (x0 > x1 or y0 > y1) when they are farther apart."""
+    return (max(boxes[vb, 0], boxes[eb, 0] - reach), max(boxes[vb, 1], boxes[eb, 1] - reach),
+            min(boxes[vb, 2], boxes[eb, 2] + reach), min(boxes[vb, 3], boxes[eb, 3] + reach))
+
+
 @jit(refcount=False)
 def _pair_contacts(
-    p, vb, eb, world, point_start, boxes, skin, margin,
+    p, vb, eb, world, point_start, x0, y0, x1, y1, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
     work, count, capacity,
 ):
+    """Contacts of the vertices of body vb in the box (x0, y0, x1, y1) against the edges of
+    body eb (see :func:`detect_contacts`); return the new count, or -1 when full."""
     reach = skin + margin
-    x0 = max(boxes[vb, 0], boxes[eb, 0] - reach)
-    y0 = max(boxes[vb, 1], boxes[eb, 1] - reach)
-    x1 = min(boxes[vb, 2], boxes[eb, 2] + reach)
-    y1 = min(boxes[vb, 3], boxes[eb, 3] + reach)
-    if x0 > x1 or y0 > y1:
-        return count
     npts = world.shape[0]
     edges = npts  # work layout (no array views): vertices, edges, bucket starts, bucket members
     starts = 2 * npts

@@ -130,8 +130,7 @@ def advance(
         if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, bodies.motion, False)
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, dyn.minv_h, bodies.motion, True)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, dyn.minv_h, bodies.motion)
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
         detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
@@ -224,7 +223,7 @@ def advance(
                 back.tracked[0] = 0
                 continue
         # --- 6: step size
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, bodies.motion, False)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, a1, bodies.motion)
         dt = _step_size(model, nc, na, contacts.gap, bodies, rows, pb, a1, settings, clock, back)
         clock[DT] = dt
         t2 = t + dt
