@@ -59,15 +59,16 @@ def contact_points(pose, points, c_vertex_body, c_vertex, c_edge_body, c_edge, i
 def bounding_boxes(world, point_start, out):
     """Axis-aligned box (xmin, ymin, xmax, ymax) of each body's world points into out (nb, 4)."""
     for b in range(point_start.shape[0] - 1):
-        out[b, 0] = np.inf
-        out[b, 1] = np.inf
-        out[b, 2] = -np.inf
-        out[b, 3] = -np.inf
+        x0, y0, x1, y1 = np.inf, np.inf, -np.inf, -np.inf
         for i in range(point_start[b], point_start[b + 1]):
-            out[b, 0] = min(out[b, 0], world[i, 0])
-            out[b, 1] = min(out[b, 1], world[i, 1])
-            out[b, 2] = max(out[b, 2], world[i, 0])
-            out[b, 3] = max(out[b, 3], world[i, 1])
+            x0 = min(x0, world[i, 0])
+            y0 = min(y0, world[i, 1])
+            x1 = max(x1, world[i, 0])
+            y1 = max(y1, world[i, 1])
+        out[b, 0] = x0
+        out[b, 1] = y0
+        out[b, 2] = x1
+        out[b, 3] = y1
 
 
 @jit(refcount=False)

@@ -55,7 +55,7 @@ from mbds.kernel.events import log_event
 from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
-from mbds.kernel.kinematics import body_states, contact_kinematics
+from mbds.kernel.kinematics import body_frames, body_states, contact_kinematics
 from mbds.kernel.layout import (
     CAPACITY,
     DRIVE_WORK,
@@ -114,6 +114,8 @@ def advance(
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
     heated = model.pair_heated.any()
+    body_frames(model.binding, model.binding_index, model.start_pose, model.carrier, bodies.pose, bodies.vel,
+                bodies.B, bodies.bhat, bodies.beta)
     passes = 0.0
     while True:
         passes += 1.0
@@ -326,7 +328,7 @@ def _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies
     if bodies.dpos.shape[0] > 0:
         dependent_state(q, u, bodies.zero, t, model.p, bodies.dpos, bodies.dvel, bodies.dacc)
         dependent_jacobian(q, u, t, model.p, bodies.djac, bodies.dsc)
-    body_states(model.binding, model.binding_index, model.start_pose, model.carrier, model.offset, q, u,
+    body_states(model.binding, model.binding_index, model.carrier, model.offset, q, u,
                 bodies.dpos, bodies.dvel, bodies.djac, bodies.dsc, bodies.pose, bodies.vel, bodies.B, bodies.bhat,
                 bodies.beta)
 

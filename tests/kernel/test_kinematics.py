@@ -7,6 +7,7 @@ from mbds.kernel.kinematics import (
     DEPENDENT,
     FIXED,
     GENERALIZED,
+    body_frames,
     body_states,
     contact_kinematics,
 )
@@ -35,7 +36,8 @@ def states(q, qd, t):
     nb, n = 3, 4
     pose, vel, B = np.empty((nb, 3)), np.empty((nb, 3)), np.empty((nb, 3, n))
     bhat, beta = np.empty((nb, 3)), np.empty((nb, 3))
-    body_states(BINDING, INDEX, START, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta)
+    body_frames(BINDING, INDEX, START, CARRIER, pose, vel, B, bhat, beta)
+    body_states(BINDING, INDEX, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta)
     return pose, vel, B, bhat, beta
 
 
