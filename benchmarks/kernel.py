@@ -232,7 +232,7 @@ def bouncing_ball(cache_root: Path) -> None:
         folder = BodyOnFloor(regular_polygon(64, radius), mass, 0.5 * mass * radius**2, position=(0.0, radius + drop, 0.0),
                              restitution=e, dt_min=BALL_STEP, dt_max=BALL_STEP, max_penetration=BALL_PENETRATION,
                              history_every=100, break_time=BALL_STEP * BALL_STEPS).write(Path(tmp) / "ball")
-            steps, wall, result = timed_run(folder, BALL_STEP * BALL_STEPS)
+        steps, wall, result = timed_run(folder, BALL_STEP * BALL_STEPS)
     ours = steps / wall
     print(f"mbds: {steps:.0f} steps in {wall:.3f} s: {ours:,.0f} steps/s "
           f"({result.state.clock[K.IMPACTS]:.0f} impacts, y = {result.state.q[1]:.6f} m at the end)")
