@@ -52,10 +52,10 @@ CLOSED_FRACTION = 0.01
 
 
 @jit(refcount=False)
-def inverse_mass_rows(L, rows, count, Y):
-    """Y[i] = M^-1 rows[i] for the first ``count`` rows (L: Cholesky factor of M)."""
-    for i in range(count):
-        cholesky_solve_row(L, rows, i, Y)
+def inverse_mass_rows(L, rows, index, count, Y):
+    """Y[i] = M^-1 rows[i] for the rows i in index[:count] (L: Cholesky factor of M)."""
+    for c in range(count):
+        cholesky_solve_row(L, rows, index[c], Y)
 
 
 @jit(inline="always")
@@ -170,29 +170,45 @@ def contact_laws(contact_law, nc, contacts, model, point_interval, rows, events,
 @jit(inline="always")
 def free_dynamics(mass_matrix, h_vector, q, u, t, p, dyn):
     """M, its Cholesky factor, h and M^-1 h (the accelerations without contact forces) at
-    (q, u, t); False if M is not positive definite."""
+    (q, u, t); False if M is not positive definite. M is factorised only when it differs
+    from the matrix the factor in dyn.L comes from (a constant M is factorised once)."""
     mass_matrix(q, t, p, dyn.M)
-    if not cholesky(dyn.M, dyn.L):
-        return False
+    if not _factorised(dyn.M, dyn.M_factored):
+        if not cholesky(dyn.M, dyn.L):
+            dyn.M_factored[0, 0] = np.nan
+            return False
+        for i in range(dyn.M.shape[0]):
+            for j in range(dyn.M.shape[1]):
+                dyn.M_factored[i, j] = dyn.M[i, j]
     h_vector(q, u, t, p, dyn.hv)
     cholesky_solve(dyn.L, dyn.hv, dyn.minv_h)
     return True
 
 
 @jit(inline="always")
-def contact_directions(rows, dyn, nc):
-    """M^-1 W_N and M^-1 W_T of the nc contacts (after :func:`free_dynamics`)."""
-    inverse_mass_rows(dyn.L, rows.WN, nc, dyn.YN)
-    inverse_mass_rows(dyn.L, rows.WT, nc, dyn.YT)
+def _factorised(M, M_factored):
+    """Whether M equals M_factored entry by entry (NaN in M_factored: no factor yet)."""
+    for i in range(M.shape[0]):
+        for j in range(M.shape[1]):
+            if M[i, j] != M_factored[i, j]:
+                return False
+    return True
 
 
 @jit(inline="always")
-def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, nc):
-    """:func:`free_dynamics` and :func:`contact_directions` at (q, u, t); False if M is not
-    positive definite."""
+def contact_directions(rows, dyn, index, count):
+    """M^-1 W_N and M^-1 W_T of the contacts index[:count] (after :func:`free_dynamics`)."""
+    inverse_mass_rows(dyn.L, rows.WN, index, count, dyn.YN)
+    inverse_mass_rows(dyn.L, rows.WT, index, count, dyn.YT)
+
+
+@jit(inline="always")
+def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, index, count):
+    """:func:`free_dynamics` and :func:`contact_directions` of the contacts index[:count] at
+    (q, u, t); False if M is not positive definite."""
     if not free_dynamics(mass_matrix, h_vector, q, u, t, p, dyn):
         return False
-    contact_directions(rows, dyn, nc)
+    contact_directions(rows, dyn, index, count)
     return True
 
 
@@ -216,6 +232,10 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
     acc = M^-1 (h + W lambda)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
+    if na == 0:
+        for k in range(n):
+            acc[k] = dyn.minv_h[k]
+        return True
     nh = build_matrix(active, na, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                       pb.A_flat)
     m = na + 2 * nh

@@ -29,24 +29,46 @@ def world_points(pose, points, point_start, out):
     for b in range(pose.shape[0]):
         c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
         for i in range(point_start[b], point_start[b + 1]):
-            x, y = points[i, 0], points[i, 1]
-            out[i, 0] = pose[b, 0] + c * x - s * y
-            out[i, 1] = pose[b, 1] + s * x + c * y
+            _world_point(pose, b, c, s, points, i, out)
+
+
+@jit(inline="always")
+def _world_point(pose, b, c, s, points, i, out):
+    """out[i] = point i of body b moved to the world (c, s: cos and sin of its angle)."""
+    x, y = points[i, 0], points[i, 1]
+    out[i, 0] = pose[b, 0] + c * x - s * y
+    out[i, 1] = pose[b, 1] + s * x + c * y
+
+
+@jit(refcount=False)
+def contact_points(pose, points, c_vertex_body, c_vertex, c_edge_body, c_edge, index, count, out):
+    """The world points (into ``out``, as :func:`world_points` computes them) of the vertex and
+    the edge's two points of the contacts index[:count]; the other points are left as they
+    are."""
+    for k in range(count):
+        i = index[k]
+        b = c_vertex_body[i]
+        _world_point(pose, b, np.cos(pose[b, 2]), np.sin(pose[b, 2]), points, c_vertex[i], out)
+        b = c_edge_body[i]
+        c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
+        _world_point(pose, b, c, s, points, c_edge[i], out)
+        _world_point(pose, b, c, s, points, c_edge[i] + 1, out)
 
 
 @jit(refcount=False)
 def bounding_boxes(world, point_start, out):
     """Axis-aligned box (xmin, ymin, xmax, ymax) of each body's world points into out (nb, 4)."""
     for b in range(point_start.shape[0] - 1):
-        out[b, 0] = np.inf
-        out[b, 1] = np.inf
-        out[b, 2] = -np.inf
-        out[b, 3] = -np.inf
+        x0, y0, x1, y1 = np.inf, np.inf, -np.inf, -np.inf
         for i in range(point_start[b], point_start[b + 1]):
-            out[b, 0] = min(out[b, 0], world[i, 0])
-            out[b, 1] = min(out[b, 1], world[i, 1])
-            out[b, 2] = max(out[b, 2], world[i, 0])
-            out[b, 3] = max(out[b, 3], world[i, 1])
+            x0 = min(x0, world[i, 0])
+            y0 = min(y0, world[i, 1])
+            x1 = max(x1, world[i, 0])
+            y1 = max(y1, world[i, 1])
+        out[b, 0] = x0
+        out[b, 1] = y0
+        out[b, 2] = x1
+        out[b, 3] = y1
 
 
 @jit(refcount=False)
@@ -73,8 +95,12 @@ def detect_contacts(
             vertex_body = pair_bodies[p, 1 - side]
             if not pair_resisting[p, side]:
                 continue
+            reach = skin[edge_body] + margin[p]
+            x0, y0, x1, y1 = _overlap(boxes, vertex_body, edge_body, reach)
+            if x0 > x1 or y0 > y1:  # no vertex can be near an edge
+                continue
             count = _pair_contacts(
-                p, vertex_body, edge_body, world, point_start, boxes, skin[edge_body], margin[p],
+                p, vertex_body, edge_body, world, point_start, x0, y0, x1, y1, skin[edge_body], margin[p],
                 c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
                 work, count, capacity,
             )
@@ -83,19 +109,23 @@ def detect_contacts(
     return count
 
 
+@jit(inline="always")
+def _overlap(boxes, vb, eb, reach):
+    """(x0, y0, x1, y1): the part of the vertex body's box within ``reach`` (m) of the edge
+    body's box; empty (x0 > x1 or y0 > y1) when they are farther apart."""
+    return (max(boxes[vb, 0], boxes[eb, 0] - reach), max(boxes[vb, 1], boxes[eb, 1] - reach),
+            min(boxes[vb, 2], boxes[eb, 2] + reach), min(boxes[vb, 3], boxes[eb, 3] + reach))
+
+
 @jit(refcount=False)
 def _pair_contacts(
-    p, vb, eb, world, point_start, boxes, skin, margin,
+    p, vb, eb, world, point_start, x0, y0, x1, y1, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
     work, count, capacity,
 ):
+    """Contacts of the vertices of body vb in the box (x0, y0, x1, y1) against the edges of
+    body eb (see :func:`detect_contacts`); return the new count, or -1 when full."""
     reach = skin + margin
-    x0 = max(boxes[vb, 0], boxes[eb, 0] - reach)
-    y0 = max(boxes[vb, 1], boxes[eb, 1] - reach)
-    x1 = min(boxes[vb, 2], boxes[eb, 2] + reach)
-    y1 = min(boxes[vb, 3], boxes[eb, 3] + reach)
-    if x0 > x1 or y0 > y1:
-        return count
     npts = world.shape[0]
     edges = npts  # work layout (no array views): vertices, edges, bucket starts, bucket members
     starts = 2 * npts
@@ -204,14 +234,15 @@ def vertex_edge(world, i, j):
 
 
 @jit(refcount=False)
-def contact_geometry(world, c_vertex, c_edge, count, c_xi, c_gap, c_normal, c_point):
-    """Recompute xi, gap, normal and point of known vertex-edge contacts at new world points."""
-    for k in range(count):
+def contact_geometry(world, c_vertex, c_edge, index, count, c_xi, c_gap, c_normal, c_point):
+    """Recompute xi, gap, normal and point of the known vertex-edge contacts index[:count] at
+    new world points."""
+    for c in range(count):
+        k = index[c]
         i = c_vertex[k]
         c_xi[k], c_gap[k], c_normal[k, 0], c_normal[k, 1] = vertex_edge(world, i, c_edge[k])
         c_point[k, 0] = world[i, 0]
         c_point[k, 1] = world[i, 1]
-
 
 
 @jit(refcount=False)

@@ -29,11 +29,35 @@ DEPENDENT = 2
 
 
 @jit(refcount=False)
+def body_frames(binding, binding_index, start_pose, carrier, pose, vel, B, bhat, beta):
+    """The parts of every body's state that do not change: B, bhat and beta of axes that are
+    generalized or fixed coordinates, and pose and velocity of fixed ones. Call it once on the
+    arrays that :func:`body_states` then fills, which writes only what changes."""
+    n = B.shape[2]
+    for b in range(binding.shape[0]):
+        if carrier[b] >= 0:
+            continue
+        for a in range(3):
+            kind = binding[b, a]
+            if kind == DEPENDENT:
+                continue
+            for j in range(n):
+                B[b, a, j] = 0.0
+            bhat[b, a] = 0.0
+            beta[b, a] = 0.0
+            if kind == GENERALIZED:
+                B[b, a, binding_index[b, a]] = 1.0
+            else:
+                pose[b, a] = start_pose[b, a]
+                vel[b, a] = 0.0
+
+
+@jit(refcount=False)
 def body_states(
-    binding, binding_index, start_pose, carrier, offset, q, qd, dep_pos, dep_vel, dep_jac, dep_scalar,
-    pose, vel, B, bhat, beta,
+    binding, binding_index, carrier, offset, q, qd, dep_pos, dep_vel, dep_jac, dep_scalar, pose, vel, B, bhat, beta,
 ):
-    """Pose (nb, 3), velocity (nb, 3), B (nb, 3, n), bhat (nb, 3) and beta (nb, 3) of every body.
+    """Pose (nb, 3), velocity (nb, 3), B (nb, 3, n), bhat (nb, 3) and beta (nb, 3) of every body,
+    in arrays that :func:`body_frames` prepared.
 
     dep_pos, dep_vel (m,), dep_jac (m, n), dep_scalar (m,): the dependent coordinates' values,
     velocities, J and j at the current state. Virtual bodies get pose and velocity from their
@@ -47,14 +71,9 @@ def body_states(
         for a in range(3):
             kind = binding[b, a]
             k = binding_index[b, a]
-            for j in range(n):
-                B[b, a, j] = 0.0
-            bhat[b, a] = 0.0
-            beta[b, a] = 0.0
             if kind == GENERALIZED:
                 pose[b, a] = q[k]
                 vel[b, a] = qd[k]
-                B[b, a, k] = 1.0
             elif kind == DEPENDENT:
                 pose[b, a] = dep_pos[k]
                 vel[b, a] = dep_vel[k]
@@ -64,9 +83,6 @@ def body_states(
                     s += dep_jac[k, j] * qd[j]
                 bhat[b, a] = dep_vel[k] - s
                 beta[b, a] = dep_scalar[k]
-            else:
-                pose[b, a] = start_pose[b, a]
-                vel[b, a] = 0.0
     for b in range(nb):
         c = carrier[b]
         if c < 0:
@@ -89,13 +105,15 @@ def body_states(
 
 @jit(refcount=False)
 def contact_kinematics(
-    count, c_vertex_body, c_edge_body, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
+    index, count, c_vertex_body, c_edge_body, c_normal, c_point, carrier, pose, vel, B, bhat, beta,
     WN, WT, what_n, what_t, wbar_n, wbar_t, gd_n, gd_t,
 ):
-    """Force directions, velocity offsets and relative velocities of the first ``count``
-    contacts: WN, WT (count, n); what_n, what_t, wbar_n, wbar_t, gd_n, gd_t (count,)."""
+    """Force directions, velocity offsets and relative velocities of the contacts
+    index[:count]: rows of WN, WT (cap, n) and entries of what_n, what_t, wbar_n, wbar_t, gd_n,
+    gd_t (cap,)."""
     n = WN.shape[1]
-    for i in range(count):
+    for c in range(count):
+        i = index[c]
         a = c_vertex_body[i]
         b = c_edge_body[i]
         if carrier[a] >= 0:

@@ -50,17 +50,19 @@ Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc d
 Jacobians B and their derivative terms, dependent coordinates, detection margins (m) and
 speed bounds (see mbds.kernel.motion)."""
 
-Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work")
+Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work order")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
 edge parameter xi, gap (m), unit normal out of the edge body, contact point (m); work:
-detection scratch."""
+detection scratch; order: 0, 1, 2, ... (the index list of all contacts, for functions that
+take a list of contacts)."""
 
 Rows = namedtuple("Rows", "WN WT what_n what_t wbar_n wbar_t gd_n gd_t laws law_out")
 """Contact rows: W_N, W_T, the velocity and acceleration terms, relative velocities (m/s) and
 the law of each contact (mu, eN, eT, nu); law_out: scratch for one law evaluation."""
 
-Dynamics = namedtuple("Dynamics", "M L hv minv_h YN YT")
-"""Mass matrix, its Cholesky factor, h, M^-1 h and M^-1 W_N, M^-1 W_T of the contacts."""
+Dynamics = namedtuple("Dynamics", "M L M_factored hv minv_h YN YT")
+"""Mass matrix, its Cholesky factor and the matrix L was factorised from (NaN: none yet), h,
+M^-1 h and M^-1 W_N, M^-1 W_T of the contacts."""
 
 Problem = namedtuple("Problem", "column hrow active stick sign A_flat bvec z w fwork iwork")
 """An LCP being set up and solved: contact set (active, stick, sign), matrix, vectors, scratch."""
@@ -105,9 +107,10 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     i = np.int64
     contacts = Contacts(
         f(c, i), f(c, i), f(c, i), f(c, i), f(c, i), f(c), f(c), f((c, 2)), f((c, 2)), f(3 * points + 2050, i),
+        np.arange(c, dtype=i),
     )
     rows = Rows(f((c, n)), f((c, n)), f(c), f(c), f(c), f(c), f(c), f(c), f((c, 4)), f(4))
-    dynamics = Dynamics(f((n, n)), f((n, n)), f(n), f(n), f((c, n)), f((c, n)))
+    dynamics = Dynamics(f((n, n)), f((n, n)), np.full((n, n), np.nan), f(n), f(n), f((c, n)), f((c, n)))
     problem = Problem(
         f((c, n)), f(c, i), f(c, i), f(c, np.bool_), f(c), f(size * size), f(size), f(size), f(size), fwork, iwork,
     )

@@ -23,35 +23,46 @@ SPEED, SPIN, ACCEL, SPIN_ACCEL = range(4)
 
 
 @jit(refcount=False)
-def body_motion(B, bhat, beta, u, acc, motion, keep_larger):
-    """Fill motion (nb, 4) with the speeds of every body at velocities u and its accelerations
-    at q'' = acc (rows of an acc that is not finite count as zero). With keep_larger, the
-    accelerations only replace larger values already there."""
+def body_motion(B, bhat, beta, u, acc, other, motion):
+    """Fill motion (nb, 4) with the speeds of every body at velocities u and the larger of its
+    accelerations at q'' = acc and q'' = other (an acceleration that is not finite counts as
+    zero; pass acc again as ``other`` for one)."""
     nb, _, n = B.shape
-    known = True
-    for k in range(n):
-        if not np.isfinite(acc[k]):
-            known = False
+    known = _finite(acc)
+    known_other = _finite(other)
     for b in range(nb):
         vx, vy, w = bhat[b, 0], bhat[b, 1], bhat[b, 2]
-        ax, ay, al = beta[b, 0], beta[b, 1], beta[b, 2]
         for k in range(n):
             vx += B[b, 0, k] * u[k]
             vy += B[b, 1, k] * u[k]
             w += B[b, 2, k] * u[k]
-            if known:
-                ax += B[b, 0, k] * acc[k]
-                ay += B[b, 1, k] * acc[k]
-                al += B[b, 2, k] * acc[k]
         motion[b, SPEED] = np.sqrt(vx * vx + vy * vy)
         motion[b, SPIN] = abs(w)
-        linear = np.sqrt(ax * ax + ay * ay)
-        angular = abs(al)
-        if keep_larger:
-            linear = max(linear, motion[b, ACCEL])
-            angular = max(angular, motion[b, SPIN_ACCEL])
-        motion[b, ACCEL] = linear
-        motion[b, SPIN_ACCEL] = angular
+        linear, angular = _acceleration(B, beta, b, acc, known)
+        second, second_angular = _acceleration(B, beta, b, other, known_other)
+        motion[b, ACCEL] = max(second, linear)
+        motion[b, SPIN_ACCEL] = max(second_angular, angular)
+
+
+@jit(inline="always")
+def _finite(x):
+    """Whether every entry of x is finite."""
+    for k in range(x.shape[0]):
+        if not np.isfinite(x[k]):
+            return False
+    return True
+
+
+@jit(inline="always")
+def _acceleration(B, beta, b, acc, known):
+    """(|a|, |alpha|) of body b at q'' = acc (m/s^2, rad/s^2); beta alone when not known."""
+    ax, ay, al = beta[b, 0], beta[b, 1], beta[b, 2]
+    if known:
+        for k in range(acc.shape[0]):
+            ax += B[b, 0, k] * acc[k]
+            ay += B[b, 1, k] * acc[k]
+            al += B[b, 2, k] * acc[k]
+    return np.sqrt(ax * ax + ay * ay), abs(al)
 
 
 @jit(inline="always")

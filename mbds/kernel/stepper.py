@@ -46,6 +46,7 @@ from mbds.kernel.contact_problem import (
 from mbds.kernel.detection import (
     bounding_boxes,
     contact_geometry,
+    contact_points,
     detect_contacts,
     tracked_depth,
     world_points,
@@ -54,7 +55,7 @@ from mbds.kernel.events import log_event
 from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
-from mbds.kernel.kinematics import body_states, contact_kinematics
+from mbds.kernel.kinematics import body_frames, body_states, contact_kinematics
 from mbds.kernel.layout import (
     CAPACITY,
     DRIVE_WORK,
@@ -113,6 +114,8 @@ def advance(
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
     heated = model.pair_heated.any()
+    body_frames(model.binding, model.binding_index, model.start_pose, model.carrier, bodies.pose, bodies.vel,
+                bodies.B, bodies.bhat, bodies.beta)
     passes = 0.0
     while True:
         passes += 1.0
@@ -129,8 +132,7 @@ def advance(
         if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, bodies.motion, False)
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, dyn.minv_h, bodies.motion, True)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, dyn.minv_h, bodies.motion)
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
         detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
@@ -163,7 +165,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-                contact_directions(rows, dyn, nc)
+                contact_directions(rows, dyn, contacts.order, nc)
                 contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
@@ -183,7 +185,7 @@ def advance(
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-        contact_directions(rows, dyn, nc)
+        contact_directions(rows, dyn, contacts.order, nc)
         # --- 4: impact
         # a closed contact impacts when it approaches faster than ZeroVelocityTolerance, or when a
         # slower approach would take it beyond maximumPenetration within a maximum step (else the
@@ -207,7 +209,7 @@ def advance(
             _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
             _contact_rows(nc, contacts, model, bodies, rows)
             contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-            dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, nc)  # M(q, t) factorised above
+            dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, contacts.order, nc)
         # --- 5: forces between impacts
         na, forces_ok = contact_forces(nc, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
                                        forces.lam_t1, a1, events, t)
@@ -223,7 +225,7 @@ def advance(
                 back.tracked[0] = 0
                 continue
         # --- 6: step size
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, bodies.motion, False)
+        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, a1, bodies.motion)
         dt = _step_size(model, nc, na, contacts.gap, bodies, rows, pb, a1, settings, clock, back)
         clock[DT] = dt
         t2 = t + dt
@@ -233,7 +235,7 @@ def advance(
             t2 = target
         # --- 7: Heun step with the contact set of step 5
         _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
-              t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
+              t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
         back.tracked[0] = nc
         if heated:
             cool(model.point_heat, point_interval, dt)
@@ -267,10 +269,12 @@ def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
 
 @jit(inline="always")
 def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
-          t2, dt, na, nc, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back):
+          t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back):
     """Heun's method (explicit trapezoidal rule) from clock[T] to t2 = clock[T] + dt with the
     contact set of the start; contact forces are solved again at the predicted end point and
-    the lost work of each contact is integrated by the trapezoidal rule."""
+    the lost work of each contact is integrated by the trapezoidal rule. At the end point only
+    the contacts of that set are followed (their geometry, rows and M^-1 W); with none, only
+    M and h are evaluated there."""
     n = q.shape[0]
     active = pb.active
     lam_n, lam_t, lam_n1, lam_t1 = forces.lam_n, forces.lam_t, forces.lam_n1, forces.lam_t1
@@ -288,12 +292,14 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
     for k in range(n):
         q_star[k] = q[k] + dt * u[k]
         u_star[k] = u[k] + dt * a1[k]
-    _body_kinematics(dependent_state, dependent_jacobian, model, q_star, u_star, t2, bodies)
-    world_points(bodies.pose, model.points, model.point_start, bodies.world)
-    contact_geometry(bodies.world, contacts.vertex, contacts.edge, nc, contacts.xi, contacts.gap, contacts.normal,
-                     contacts.point)
-    _contact_rows(nc, contacts, model, bodies, rows)
-    end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, nc)
+    if na > 0:
+        _body_kinematics(dependent_state, dependent_jacobian, model, q_star, u_star, t2, bodies)
+        contact_points(bodies.pose, model.points, contacts.vb, contacts.vertex, contacts.eb, contacts.edge, active, na,
+                       bodies.world)
+        contact_geometry(bodies.world, contacts.vertex, contacts.edge, active, na, contacts.xi, contacts.gap,
+                         contacts.normal, contacts.point)
+        _contact_kinematics(active, na, contacts, model, bodies, rows)
+    end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, active, na)
     end_ok = end_ok and accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
     if not end_ok:
         for k in range(n):
@@ -322,7 +328,7 @@ def _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies
     if bodies.dpos.shape[0] > 0:
         dependent_state(q, u, bodies.zero, t, model.p, bodies.dpos, bodies.dvel, bodies.dacc)
         dependent_jacobian(q, u, t, model.p, bodies.djac, bodies.dsc)
-    body_states(model.binding, model.binding_index, model.start_pose, model.carrier, model.offset, q, u,
+    body_states(model.binding, model.binding_index, model.carrier, model.offset, q, u,
                 bodies.dpos, bodies.dvel, bodies.djac, bodies.dsc, bodies.pose, bodies.vel, bodies.B, bodies.bhat,
                 bodies.beta)
 
@@ -330,9 +336,15 @@ def _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies
 @jit(inline="always")
 def _contact_rows(nc, contacts, model, bodies, rows):
     """Force directions, velocity terms and relative velocities of the nc contacts."""
-    contact_kinematics(nc, contacts.vb, contacts.eb, contacts.normal, contacts.point, model.carrier, bodies.pose,
-                       bodies.vel, bodies.B, bodies.bhat, bodies.beta, rows.WN, rows.WT, rows.what_n, rows.what_t,
-                       rows.wbar_n, rows.wbar_t, rows.gd_n, rows.gd_t)
+    _contact_kinematics(contacts.order, nc, contacts, model, bodies, rows)
+
+
+@jit(inline="always")
+def _contact_kinematics(index, count, contacts, model, bodies, rows):
+    """Force directions, velocity terms and relative velocities of the contacts index[:count]."""
+    contact_kinematics(index, count, contacts.vb, contacts.eb, contacts.normal, contacts.point, model.carrier,
+                       bodies.pose, bodies.vel, bodies.B, bodies.bhat, bodies.beta, rows.WN, rows.WT, rows.what_n,
+                       rows.what_t, rows.wbar_n, rows.wbar_t, rows.gd_n, rows.gd_t)
 
 
 @jit(refcount=False)

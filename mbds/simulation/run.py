@@ -69,8 +69,10 @@ def simulate(
     grow with the run's length), ``on_events(rows)`` the event rows and ``progress(t)`` the time
     reached (s), if given. ``on_events`` or ``progress`` may raise :class:`RunStopped` or
     KeyboardInterrupt to end the run there (unless it already reached its break time): the
-    samples and events so far are returned, with ``stopped`` set. The result does not depend on
-    ``chunk`` or ``run.passes_per_call``. A state that
+    samples and events so far are returned, with ``stopped`` set. Without ``on_samples`` the
+    result holds the samples, written by the stepper into one buffer sized for the run (a new
+    one, twice as long, when samples at collisions or at every step fill it). The result does
+    not depend on ``chunk`` or ``run.passes_per_call``. A state that
     stops being finite (or a mass matrix that is not positive definite) also ends the run, with
     ``stopped`` saying so.
     """
@@ -83,9 +85,10 @@ def simulate(
     capacity = 16
     ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
     chunks: list[Samples] = []
-    deliver = on_samples if on_samples is not None else chunks.append
+    collect = on_samples is None  # the result holds the samples: fill one buffer, no copies
     events: list[np.ndarray] = []
-    history = K.history_buffers(n, len(model.watches), chunk)
+    watches = len(model.watches)
+    history = K.history_buffers(n, watches, _collected_length(settings, run, state, n, watches) if collect else chunk)
     events_out = event_buffer(EVENT_CHUNK)
     stopped = ""
     while True:
@@ -97,10 +100,13 @@ def simulate(
             capacity *= 2
             ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
             continue
-        count = int(history.count[0])
-        if count:
-            deliver(Samples(*(a[:count].copy() for a in history[:-1])))
-        history.count[0] = 0
+        if not collect:
+            if history.count[0]:
+                on_samples(Samples(*(a.copy() for a in _filled(history))))
+            history.count[0] = 0
+        elif status == K.HISTORY_FULL:
+            chunks.append(_filled(history))
+            history = K.history_buffers(n, watches, 2 * len(history.time))
         events.append(events_out.data[: events_out.count[0]].copy())
         events_out.count[0] = 0
         if status == K.NOT_FINITE:
@@ -116,6 +122,27 @@ def simulate(
                 stopped = (str(exc) or "stopped") if isinstance(exc, RunStopped) else "interrupted"
         if stopped or status == K.REACHED:
             break
-    empty = Samples(*(a[:0].copy() for a in history[:-1]))
-    columns = [np.concatenate([c[j] for c in chunks] + [empty[j]]) for j in range(len(Samples._fields))]
-    return RunResult(Samples(*columns), np.concatenate(events), state, capacity=capacity, stopped=stopped)
+    chunks.append(_filled(history))  # empty unless collecting
+    samples = chunks[-1] if len(chunks) == 1 else Samples(*(np.concatenate(c) for c in zip(*chunks)))
+    return RunResult(samples, np.concatenate(events), state, capacity=capacity, stopped=stopped)
+
+
+COLLECTED_BYTES = 1 << 28
+"""Largest history buffer (bytes) a run that keeps its samples in memory starts with."""
+
+
+def _collected_length(settings: np.ndarray, run: RunSettings, state: RunState, n: int, watches: int) -> int:
+    """Samples of the history buffer of a run that keeps them in memory: one per sample
+    interval up to the break time and HISTORY_CHUNK more (samples at collisions or at every
+    step make the buffer grow), at most COLLECTED_BYTES."""
+    per_sample = 8 * (4 + 3 * n + watches * K.POINT_COLUMNS)
+    expected = HISTORY_CHUNK
+    if settings[K.SAMPLE_EACH_STEP] == 0.0:
+        expected += int(max(run.break_time - state.clock[K.T], 0.0) / settings[K.SAMPLE_EVERY]) + 1
+    return max(HISTORY_CHUNK, min(expected, COLLECTED_BYTES // per_sample))
+
+
+def _filled(history: K.History) -> Samples:
+    """Views of the samples written into ``history``."""
+    count = int(history.count[0])
+    return Samples(*(a[:count] for a in history[:-1]))

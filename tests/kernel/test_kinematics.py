@@ -7,6 +7,7 @@ from mbds.kernel.kinematics import (
     DEPENDENT,
     FIXED,
     GENERALIZED,
+    body_frames,
     body_states,
     contact_kinematics,
 )
@@ -35,7 +36,8 @@ def states(q, qd, t):
     nb, n = 3, 4
     pose, vel, B = np.empty((nb, 3)), np.empty((nb, 3)), np.empty((nb, 3, n))
     bhat, beta = np.empty((nb, 3)), np.empty((nb, 3))
-    body_states(BINDING, INDEX, START, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta)
+    body_frames(BINDING, INDEX, START, CARRIER, pose, vel, B, bhat, beta)
+    body_states(BINDING, INDEX, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta)
     return pose, vel, B, bhat, beta
 
 
@@ -59,7 +61,7 @@ def contact_state(q, qd, t):
     _, normal, point = gap(q, t)
     out = [np.empty((1, 4)), np.empty((1, 4))] + [np.empty(1) for _ in range(6)]
     contact_kinematics(
-        1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
+        np.array([0]), 1, np.array([0]), np.array([2]), normal[None, :], point[None, :], CARRIER, pose, vel, B, bhat, beta, *out
     )
     return out
 
