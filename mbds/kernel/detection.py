@@ -7,6 +7,11 @@ tangent t = (Q1 - Q0) / L and outward normal n = (t_y, -t_x) of E:
 - position along the edge xi = t . (P - Q0) / L, a candidate when 0 <= xi <= 1;
 - gap g = n . (P - Q0) (m), negative in penetration; a candidate when -skin_E < g <= margin.
 
+A vertex deeper than DEEP x skin behind an edge counts only if it lies inside the edge's body
+(a point-in-polygon test), and of a vertex's contacts with one body only those within DEEP x skin
+of its nearest face are kept: where the skin is thicker than a body, a vertex near one face is
+also within the skin of the opposite face, seen from inside, without touching it.
+
 Which vertex-edge directions are tested follows ``resistingPenetration``: a body that resists
 penetration has its edges tested against the other body's vertices (T:T both ways).
 
@@ -21,6 +26,11 @@ from __future__ import annotations
 import numpy as np
 
 from mbds.kernel.jit import jit
+
+DEEP = 0.01
+"""A vertex deeper than DEEP x skin behind a face (with the default skin: deeper than
+maximumPenetration) is in contact with it only if it lies inside the face's body, and a vertex's
+contacts with one body are those within DEEP x skin of its nearest face."""
 
 
 @jit(refcount=False)
@@ -188,6 +198,7 @@ def _pair_contacts(
             work[starts] = 0
     for v in range(nv):
         i = work[v]
+        first = count
         k = _bucket(world[i, axis], lo, width, nb)
         for m in range(work[starts + k], work[starts + k + 1]):
             j = work[members + m]
@@ -196,6 +207,8 @@ def _pair_contacts(
                 continue
             if gap <= -skin or gap > margin:
                 continue
+            if gap < -DEEP * skin and not _inside(world, i, point_start[eb], point_start[eb + 1]):
+                continue  # within the skin of a face seen from inside, but outside the body
             if count >= capacity:
                 return -1
             c_pair[count] = p
@@ -210,7 +223,48 @@ def _pair_contacts(
             c_point[count, 0] = world[i, 0]
             c_point[count, 1] = world[i, 1]
             count += 1
+        count = _nearest_faces(first, count, DEEP * skin, c_vertex, c_edge, c_xi, c_gap, c_normal, c_point)
     return count
+
+
+@jit(inline="always")
+def _nearest_faces(first, count, tolerance, c_vertex, c_edge, c_xi, c_gap, c_normal, c_point):
+    """Of one vertex's contacts with one body (rows first ... count - 1), keep those whose gap is
+    within ``tolerance`` (m) of the nearest face's (the largest gap); return the new count. A
+    vertex on one face of a body thinner than the skin also lies within the skin of the
+    opposite face, seen from inside: that face is not in contact."""
+    if count - first < 2:
+        return count
+    best = c_gap[first]
+    for r in range(first + 1, count):
+        best = max(best, c_gap[r])
+    kept = first
+    for r in range(first, count):
+        if c_gap[r] >= best - tolerance:
+            if kept != r:
+                c_vertex[kept] = c_vertex[r]
+                c_edge[kept] = c_edge[r]
+                c_xi[kept] = c_xi[r]
+                c_gap[kept] = c_gap[r]
+                c_normal[kept, 0] = c_normal[r, 0]
+                c_normal[kept, 1] = c_normal[r, 1]
+                c_point[kept, 0] = c_point[r, 0]
+                c_point[kept, 1] = c_point[r, 1]
+            kept += 1
+    return kept
+
+
+@jit(inline="always")
+def _inside(world, i, start, stop):
+    """Whether world point i lies inside the closed polygon of points start ... stop - 1 (the
+    last one repeats the first): the crossing number of a ray towards +x."""
+    x, y = world[i, 0], world[i, 1]
+    inside = False
+    for j in range(start, stop - 1):
+        ax, ay, bx, by = world[j, 0], world[j, 1], world[j + 1, 0], world[j + 1, 1]
+        if (ay > y) != (by > y) and x < ax + (y - ay) * (bx - ax) / (by - ay):
+            inside = not inside
+    return inside
 
 
 @jit(inline="always")
