@@ -8,7 +8,8 @@ and attributes, its attributes, and the values of its index coordinates and text
 turns such a description back into an ``xarray.Dataset`` whose variables are read from the file
 only when their values are used, decoded as ``xarray.open_dataset`` decodes the files mbds
 writes. Opening a
-described dataset touches no file, so a tree of a thousand runs opens in a fraction of a second.
+described dataset touches no file; :class:`Described` opens the runs of a campaign, sharing
+what runs of one layout have in common, so a tree of a thousand runs opens in about a second.
 
 The description is JSON text, apart from the values of one dimension's index coordinate (the
 long ``time`` of a history), which :func:`describe` returns as an array to be stored beside it.
@@ -16,6 +17,7 @@ long ``time`` of a history), which :func:`describe` returns as an array to be st
 
 from __future__ import annotations
 
+import functools
 import json
 from pathlib import Path
 from typing import NamedTuple
@@ -76,7 +78,7 @@ class Described:
     layout is built as :func:`open_described` builds it; each further one is put together from
     it without xarray's checks: its indexes are shared, its variables copied (each dataset has
     variables of its own), and only its file's variables and its long index are made anew (about
-    0.3 ms instead of 2 ms)."""
+    half a millisecond instead of 2 ms)."""
 
     def __init__(self):
         self._layouts: list[_Layout] = []
@@ -96,8 +98,8 @@ class Described:
         variables = {name: variable.copy(deep=False) for name, variable in layout.variables.items()}
         for name, dims, attrs, encoding, dtype in layout.in_file:
             shape = tuple(header["dims"][d] for d in dims)
-            variables[name] = xr.Variable(dims, indexing.LazilyIndexedArray(_FileVariable(path, name, shape, dtype)),
-                                          attrs, encoding)
+            lazy = indexing.LazilyIndexedArray(_FileVariable(path, name, shape, dtype), _whole(len(dims)))
+            variables[name] = xr.Variable(dims, lazy, attrs, encoding)
         sizes, indexes = dict(layout.sizes), dict(layout.indexes)
         if long in sizes:
             sizes[long] = header["dims"][long]
@@ -149,6 +151,12 @@ class _Layout(NamedTuple):
                         for name in _in_file(header))
         return cls(key, dict(first.variables), dict(first.xindexes), frozenset(first.coords), dict(first.sizes),
                    in_file)
+
+
+@functools.cache
+def _whole(ndim: int) -> indexing.BasicIndexer:
+    """The key that takes the whole of an array of ``ndim`` dimensions (made once per ``ndim``)."""
+    return indexing.BasicIndexer((slice(None),) * ndim)
 
 
 def _in_file(header: dict) -> list[str]:
