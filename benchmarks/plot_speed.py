@@ -103,8 +103,8 @@ def campaign(work: Path, keep: Path | None, repeat: int) -> None:
             times[name] = time.perf_counter() - start
         tree.close()
         shown = ", ".join(f"{k} {v:.2f} s" for k, v in times.items())
-        print(f"campaign 64 chains x 10 versions ({size:.0f} MiB): mbds-campaign plot ({figures} figures) {command:.2f} s; "
-              f"in process: open {opened:.2f} s, {shown}; load average {os.getloadavg()[0]:.2f}")
+        print(f"campaign 64 chains x 10 versions ({size:.0f} MiB): mbds-campaign plot ({figures} figures) "
+              f"{command:.2f} s; in process: open {opened:.2f} s, {shown}; load average {os.getloadavg()[0]:.2f}")
 
 
 def main() -> None:
