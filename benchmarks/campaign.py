@@ -50,7 +50,11 @@ lost against a perfect speed-up: start-up and shut-down, idle workers (the tail)
 and, for measured rows, the extra time of each worker's first task. The same replay with tasks
 handed out in plan order shows what ordering by remaining work gains.
 
-Run from the repository root: ``.venv/bin/python benchmarks/campaign.py [--scaling ...]``.
+Opening mode, ``--opening [--repeat 5]``: only the opening figure. The campaign above runs once
+on a pool of 2 workers (compiled models from the usual cache), is collected, and the campaign
+file of 1000 references is opened ``--repeat`` times; each time is printed.
+
+Run from the repository root: ``.venv/bin/python benchmarks/campaign.py [--scaling ... | --opening]``.
 """
 
 from __future__ import annotations
@@ -239,6 +243,21 @@ def opening(job: Path, runs: int = 1000) -> float:
     return seconds
 
 
+def opening_only(repeat: int) -> int:
+    """The opening mode (see the module docstring)."""
+    from mbds.campaign.collect import collect
+    from mbds.campaign.plan import expand
+
+    with tempfile.TemporaryDirectory(prefix="mbds-campaign-opening-") as temp:
+        job = make_campaign(Path(temp) / "opening")
+        subprocess.run(LAUNCHES["pool, 2 workers"] + [str(job)], check=True, capture_output=True)
+        collect(expand(job))
+        seconds = [opening(job) for _ in range(repeat)]
+    print(f"opening a campaign of 1000 runs, {repeat} times: " + ", ".join(f"{s:.2f}" for s in seconds)
+          + f" s (min {min(seconds):.2f}, max {max(seconds):.2f}); load average {os.getloadavg()[0]:.2f}")
+    return 0
+
+
 def _megabytes(job: Path) -> str:
     """Size of the campaign file and the mean uncompressed size of a run's watch tables."""
     import netCDF4
@@ -308,7 +327,11 @@ def main() -> int:
     parser.add_argument("--chains", type=int, default=48, help="chains of the scaling campaign (a multiple of 4)")
     parser.add_argument("--versions", type=int, default=5, help="versions per chain of the scaling campaign")
     parser.add_argument("--workers", default="1,2,4,8,15", help="worker counts of the scaling mode")
+    parser.add_argument("--opening", action="store_true", help="only the opening figure")
+    parser.add_argument("--repeat", type=int, default=5, help="openings timed in the opening mode")
     args = parser.parse_args()
+    if args.opening:
+        return opening_only(args.repeat)
     if args.scaling:
         return scaling(args.chains, args.versions, [int(n) for n in args.workers.split(",")])
     with tempfile.TemporaryDirectory(prefix="mbds-campaign-bench-") as temp:

@@ -42,7 +42,7 @@ from mbds.campaign.plan import DAP_BC, RUN_KINDS, Plan, Task
 from mbds.campaign.replicates import identical_replicates
 from mbds.campaign.section import ENSEMBLE
 from mbds.data.history import FILE_NAME as HISTORY
-from mbds.data.references import describe, open_described
+from mbds.data.references import Described, describe
 from mbds.errors import ModelError
 from mbds.io.text import atomic_path
 
@@ -97,35 +97,72 @@ def write_references(group: netCDF4.Group, references: list[tuple[str, str, str,
     samples[:] = np.concatenate(times) if times else np.zeros(0)
 
 
-def open_campaign(path: str | Path, load: bool = False) -> xr.DataTree:
+def open_campaign(path: str | Path, load: bool = False, runs: bool = True) -> xr.DataTree:
     """The campaign file at ``path`` (``campaign.nc``, or a campaign folder holding one) as a
     tree: the summary opened lazily as xarray opens files, and each run's node built from its
     reference, its values read from the run's ``history.nc`` when used (``tree.close()`` releases
     the campaign file); or everything read into memory, files closed, with ``load=True``.
-    The varied keys are indexed: ``tree.ds.sel(c_mu=0.3)`` (one key at a time; several with
-    :func:`mbds.data.analysis.select`). ModelError when there is none."""
+    ``runs=False``: the summary alone, a tree of one node (what reads only the summary, as the
+    campaign figures do, skips making a node per run). The varied keys are indexed:
+    ``tree.ds.sel(c_mu=0.3)`` (one key at a time; several with :func:`mbds.data.analysis.select`).
+    ModelError when there is none."""
     path = Path(path)
     if path.is_dir():
         path = path / CAMPAIGN_FILE
     if not path.is_file():
         raise ModelError("no campaign file; collect the campaign first: mbds-campaign collect", path)
-    nodes = {}
-    with netCDF4.Dataset(path) as campaign:
-        runs = campaign.groups[RUNS_GROUP]
-        times, starts = runs["time"][...], runs["time_start"][...]
-        ends = np.append(starts[1:], len(times))
-        for node, file, description, a, b in zip(runs["node"][...], runs["file"][...], runs["description"][...],
-                                                 starts, ends):
-            nodes[node] = open_described(path.parent / file, description, times[a:b])
+    nodes = run_nodes(path) if runs else {}
     opened = summary_ds = xr.open_dataset(path, engine="netcdf4")
     for name in [name for name, c in summary_ds.coords.items() if "key" in c.attrs and c.dims == ("variant",)]:
         summary_ds = summary_ds.set_xindex(name)
-    tree = xr.DataTree.from_dict({"/": summary_ds, **nodes})
+    tree = grown(summary_ds, nodes)
     tree.set_close(opened.close)  # the file itself: a handle left to the garbage collector may close inside HDF5
     if not load:
         return tree
     with tree:
         return tree.load()
+
+
+def run_nodes(path: Path) -> dict[str, xr.Dataset]:
+    """The run nodes of the campaign file ``path`` by their paths, built from their references."""
+    nodes, described = {}, Described()
+    with netCDF4.Dataset(path) as campaign:
+        campaign.set_auto_mask(False)  # plain arrays: the references have no fill values
+        runs = campaign.groups[RUNS_GROUP]
+        times, starts = runs["time"][...], runs["time_start"][...]
+        ends = np.append(starts[1:], len(times))
+        for node, file, description, a, b in zip(runs["node"][...], runs["file"][...], runs["description"][...],
+                                                 starts, ends):
+            nodes[node] = described.open(path.parent / file, description, times[a:b])
+    return nodes
+
+
+def grown(root: xr.Dataset, nodes: dict[str, xr.Dataset]) -> xr.DataTree:
+    """The tree ``DataTree.from_dict({"/": root, **nodes})`` makes (paths absolute, parents made
+    empty where missing), grown from the root down: each node is made once and joined to its
+    parent once, where ``from_dict`` copies a node again for every level it is set through.
+    The datasets of ``nodes`` become the nodes themselves: they must not be used elsewhere."""
+    made = {"/": xr.DataTree(root)}
+    children: dict[str, dict[str, xr.DataTree]] = {}
+    for path in nodes:
+        parts = path.strip("/").split("/")
+        for depth in range(1, len(parts) + 1):
+            here = "/" + "/".join(parts[:depth])
+            if here not in made:
+                made[here] = _node(nodes.get(here))
+                children.setdefault("/" + "/".join(parts[:depth - 1]), {})[parts[depth - 1]] = made[here]
+    for parent, named in children.items():  # parents first: each node is checked against its parents once
+        made[parent].children = named
+    return made["/"]
+
+
+def _node(ds: xr.Dataset | None) -> xr.DataTree:
+    """A tree node holding ``ds`` itself: ``DataTree(ds)`` would copy it, at a third of the cost
+    of opening a campaign."""
+    node = xr.DataTree()
+    if ds is not None:
+        node._set_node_data(ds)
+    return node
 
 
 def node_path(plan: Plan, task: Task) -> str:

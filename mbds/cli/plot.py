@@ -81,7 +81,7 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
                          "mbds.open_campaign (docs/campaigns.md, 'DAP_BC models')", job)
     folder = output or plan.folder / "figures"
     folder.mkdir(parents=True, exist_ok=True)
-    tree = open_campaign(plan.folder)
+    tree = open_campaign(plan.folder, runs=False)  # the figures read the summary alone
     try:
         written = [plot.save(plot.campaign_summary(tree), folder / "summary.png")]
         root = tree.ds

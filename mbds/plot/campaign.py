@@ -105,10 +105,11 @@ def campaign_summary(campaign: xr.DataTree) -> Figure:
     figure = Figure(figsize=(7, 8), layout="constrained")
     panels = figure.subplots(3, 1, sharex=True)
     colors, styles, legend = _variant_styles(root)
+    rows = [values.transpose("variant", "version").values for values in (lost, final, shift)]  # read once
     for k in range(root.sizes["variant"]):
-        for ax, values in zip(panels, (lost, final, shift)):
-            ax.plot(versions, values.isel(variant=k).values, marker="o", linestyle=styles[k], color=colors[k],
-                    label=legend[k], markersize=3)
+        for ax, values in zip(panels, rows):
+            ax.plot(versions, values[k], marker="o", linestyle=styles[k], color=colors[k], label=legend[k],
+                    markersize=3)
     panels[2].xaxis.set_major_locator(MaxNLocator(integer=True))
     panels[0].set_ylabel("lost work in the run (J)")
     panels[1].set_ylabel("mechanical energy at the end (J)")
