@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from mbds.kernel.detection import bounding_boxes, detect_contacts, world_points
+from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, world_points
 
 
 def circle(radius, n, rough=0.0, seed=0):
@@ -35,16 +35,30 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     return found, world, start
 
 
+def inside(point, polygon) -> bool:
+    """Whether ``point`` lies inside the closed ``polygon`` (even-odd rule, by matplotlib)."""
+    from matplotlib.path import Path
+
+    return bool(Path(polygon).contains_point(point, radius=0.0))
+
+
 def brute_force(world, start, vb, eb, skin, margin):
+    """Every vertex of vb over an edge of eb with -skin < gap <= margin; one deeper than DEEP x
+    skin only when inside eb; of a vertex's contacts, those within DEEP x skin of the largest gap."""
     found = {}
+    polygon = world[start[eb]:start[eb + 1]]
     for i in range(start[vb], start[vb + 1] - 1):
+        mine = {}
         for j in range(start[eb], start[eb + 1] - 1):
             q0, q1 = world[j], world[j + 1]
             t = (q1 - q0) / np.linalg.norm(q1 - q0)
             xi = t @ (world[i] - q0) / np.linalg.norm(q1 - q0)
             gap = np.array([t[1], -t[0]]) @ (world[i] - q0)
-            if 0 <= xi <= 1 and -skin < gap <= margin:
-                found[(i, j)] = (xi, gap)
+            if 0 <= xi <= 1 and -skin < gap <= margin and (gap >= -DEEP * skin or inside(world[i], polygon)):
+                mine[(i, j)] = (xi, gap)
+        if mine:
+            best = max(gap for _, gap in mine.values())
+            found |= {key: value for key, value in mine.items() if value[1] >= best - DEEP * skin}
     return found
 
 
