@@ -73,6 +73,10 @@ FIRST_STEP = textwrap.dedent("""
     print(json.dumps({"first_step": time.time() - float(sys.argv[1])}))
 """)
 
+SINGLE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
+"""Siconos runs on one thread, as mbds does: with its default thread count its woodpecker took
+5.0 s per simulated second instead of 1.6 s while another process ran on the second core."""
+
 RUNS = 3
 """Timed runs of each mbds and Siconos case; the fastest counts (the machine is shared)."""
 
@@ -152,7 +156,7 @@ def siconos_best(script: str, *args) -> dict | None:
     for _ in range(RUNS):
         try:
             out = subprocess.run([SICONOS_PYTHON, "-c", script, *map(str, args)], capture_output=True, text=True,
-                                 check=True)
+                                 check=True, env={**os.environ, **SINGLE_THREAD})
         except (OSError, subprocess.CalledProcessError) as error:
             detail = (getattr(error, "stderr", "") or str(error)).strip()
             print(f"Siconos: MISSING or failing ({detail.splitlines()[-1] if detail else error}); "
