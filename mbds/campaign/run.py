@@ -98,10 +98,9 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
     in this process before the run is handed out (instead of :func:`warm_up` before the loop)."""
     ledger = Ledger.load(plan.folder)
     ledger.bind(plan)
-    by_id = {task.id: task for task in plan.tasks} if structures is not None else {}
-    for task_id, entry in ledger.tasks.items() if structures is not None else ():
-        if task_id in by_id:
-            structures.learn(by_id[task_id], entry)
+    if structures is not None:
+        for task_id, entry in ledger.tasks.items():
+            structures.learn(task_id, entry)
     outcome = Outcome(start=utc_now())
     running: set[str] = set()
     told = False
@@ -111,7 +110,7 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             running.discard(task_id)
             ledger.mark(task_id, save=False, **result)
             if structures is not None:
-                structures.learn(by_id[task_id], result)
+                structures.learn(task_id, result)
             changed = True
             {DONE: outcome.done, FAILED: outcome.failed, PENDING: outcome.stopped}[result["state"]].append(task_id)
             if progress is not None:

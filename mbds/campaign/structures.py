@@ -14,20 +14,35 @@ from __future__ import annotations
 
 import warnings
 
-from mbds.campaign.plan import PREPARE, Plan, Task
+from mbds.campaign.plan import PREPARE, Plan
 from mbds.errors import ModelWarning
 
 
 def structure(files) -> str:
     """The structure key of the model in ``files`` (a folder's model files, variant values
     written in)."""
-    from mbds.expr.cache import source_hash
-    from mbds.expr.codegen import generate_source
+    return _key(_assembled(files))
+
+
+def _assembled(files):
+    """The model of ``files``, assembled (its warnings are the runs' to report)."""
     from mbds.model.load import assemble_model
 
-    with warnings.catch_warnings():  # the runs report the model's warnings
+    with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
-        return source_hash(generate_source(assemble_model(files).expressions))
+        return assemble_model(files)
+
+
+def _key(model) -> str:
+    """The structure key of an assembled model: the hash of its generated source."""
+    from mbds.expr.cache import source_hash
+    from mbds.expr.codegen import generate_source
+
+    return source_hash(generate_source(model.expressions))
+
+
+def _name(variant) -> str | None:
+    return variant.id if variant is not None else None
 
 
 class Structures:
@@ -36,8 +51,8 @@ class Structures:
     def __init__(self, plan: Plan):
         from mbds.io.folder import read_model_files
 
-        self._plan = plan
         self._base = read_model_files(plan.job.world_path())
+        self._variant_of = {task.id: _name(task.variant) for task in plan.tasks if task.kind == PREPARE}
         self._ready: set[str] = set()
         self._of: dict[str | None, str] = {}
 
@@ -46,28 +61,27 @@ class Structures:
 
         return self._base if variant is None else variant_files(self._base, variant)[0]
 
-    def learn(self, task: Task, entry: dict) -> None:
+    def learn(self, task_id: str, entry: dict) -> None:
         """Note the structure a prepare task found (its ledger ``entry``), if it did."""
-        if task.kind == PREPARE and "structure" in entry:
-            self._of[task.variant.id if task.variant else None] = entry["structure"]
+        if task_id in self._variant_of and "structure" in entry:
+            self._of[self._variant_of[task_id]] = entry["structure"]
 
     def make_ready(self, variant) -> bool:
         """Make the structure of ``variant`` (None: the job's own model) ready unless it is;
         whether it had to be (a structure new to this process)."""
-        from mbds.model.load import assemble_model
         from mbds.simulation.buffers import RunSettings
         from mbds.simulation.run import simulate
 
-        name = variant.id if variant is not None else None
-        files = None
+        name = _name(variant)
+        model = None
         if name not in self._of:
-            files = self._files(variant)
-            self._of[name] = structure(files)
+            model = _assembled(self._files(variant))
+            self._of[name] = _key(model)
         if self._of[name] in self._ready:
             return False
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ModelWarning)
-            simulate(assemble_model(files or self._files(variant)), RunSettings(break_time=0.0))
+            simulate(model or _assembled(self._files(variant)), RunSettings(break_time=0.0))
         self._ready.add(self._of[name])
         return True
 
