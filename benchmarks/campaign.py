@@ -16,13 +16,16 @@ shown on its own.
 Figures:
 
 - ``wall s``: the whole command, interpreter start, imports and the warm-up (a cache load) in;
-  ``loop s``: first task start to last task end in the ledger (the fan-out alone);
+  ``loop s``: the first task's start on its worker (its end in the ledger less its own wall
+  time) to the last task's end in the ledger (the fan-out alone; what a worker does before its
+  first task, imports and loading the compiled model, counts as start-up);
 - ``tasks s``: the sum of the tasks' wall times (measured by the worker around each task);
 - efficiency: t(1 worker) / (2 t(2 workers)), for the whole command and for the loop; the
   loop's is split into how busy the scheduler kept the 2 workers, how fast tasks ran with two
   at once against one alone (the machine's share), and how busy it kept 1 worker;
 - per-task overhead: ``sched ms``, the ledger's end - start of a task minus its own wall time
-  (sending, polling, receiving, ledger write), and ``idle ms``, a worker's mean gap between the
+  (sending, polling, receiving, ledger write; each worker's first task left out, since its
+  start in the ledger comes before the worker's own start-up), and ``idle ms``, a worker's mean gap between the
   end of one task and the start of the next; ``start-up`` and ``writing``: a run task's wall time
   split by timing, in this process, the model load and the simulation of the same versions
   (the rest is writing the outputs);
@@ -47,8 +50,9 @@ cores allow (N + 1 ranks); for the other N, the measured task times are replayed
 start-up and shut-down of the measured run are added. It prints N, wall, parallel efficiency
 (wall(1) / (N wall(N))), whether the row was measured or replayed, and the split of the time
 lost against a perfect speed-up: start-up and shut-down, idle workers (the tail), round trips,
-and, for measured rows, the extra time of each worker's first task. The same replay with tasks
-handed out in plan order shows what ordering by remaining work gains.
+and the extra time of each worker's first run over the mean run (measured; for replayed rows
+the 1-worker run's, charged in the replay to every worker's first run). The same replay with
+tasks handed out in plan order shows what ordering by remaining work gains.
 
 Opening mode, ``--opening [--repeat 5]``: only the opening figure. The campaign above runs once
 on a pool of 2 workers (compiled models from the usual cache), is collected, and the campaign
@@ -148,11 +152,11 @@ def launch(name: str, job: Path, env: dict, command: list[str] | None = None) ->
         idle += [start[b] - end[a] for a, b in zip(mine, mine[1:])]
     return {
         "wall": wall,
-        "loop": max(end.values()) - min(start.values()),
+        "loop": max(end.values()) - min(end[k] - e["wall"] for k, e in tasks.items()),
         "tasks": sum(e["wall"] for e in tasks.values()),
         "count": len(tasks),
         "all_done": all(e["state"] == "done" for e in tasks.values()),
-        "sched": np.mean([end[k] - start[k] - e["wall"] for k, e in tasks.items()]),
+        "sched": np.mean([end[k] - start[k] - e["wall"] for k, e in tasks.items() if k not in _firsts(tasks, start)]),
         "idle": np.mean(idle) if idle else float("nan"),
         "compiled": sum(e["compiled"] for e in tasks.values()),
         "ranks": sorted({e["rank"] for e in tasks.values() if "rank" in e}),
@@ -160,6 +164,12 @@ def launch(name: str, job: Path, env: dict, command: list[str] | None = None) ->
         "walls": {k: e["wall"] for k, e in tasks.items()},
         "first_task_extra": _first_task_extra(tasks, start),
     }
+
+
+def _firsts(tasks: dict, start: dict) -> set[str]:
+    """The first task of each rank."""
+    ranks = {e.get("rank") for e in tasks.values()} - {None}
+    return {min((k for k, e in tasks.items() if e.get("rank") == rank), key=start.get) for rank in ranks}
 
 
 def _first_task_extra(tasks: dict, start: dict) -> float:
@@ -304,12 +314,13 @@ def scaling(chains: int, versions: int, counts: list[int]) -> int:
         print(f"\n{'N':>3} {'how':>9} {'wall s':>8} {'efficiency':>10} {'start+end s':>11} {'idle s':>7} "
               f"{'round trips s':>13} {'first task s':>12} {'plan order: wall s':>19} {'efficiency':>10}")
         for n in counts:
-            ordered = replay(plan, base["walls"], n, base["sched"], longest_first=True)
-            planned = replay(plan, base["walls"], n, base["sched"], longest_first=False)
+            extra = max(base["first_task_extra"], 0.0)
+            ordered = replay(plan, base["walls"], n, base["sched"], longest_first=True, first_run_extra=extra)
+            planned = replay(plan, base["walls"], n, base["sched"], longest_first=False, first_run_extra=extra)
             if n in measured:
                 how, wall, first = "measured", measured[n]["wall"], measured[n]["first_task_extra"]
             else:
-                how, wall, first = "replayed", startup + ordered.loop, float("nan")
+                how, wall, first = "replayed", startup + ordered.loop, extra
             print(f"{n:>3} {how:>9} {wall:>8.2f} {base['wall'] / (n * wall):>10.3f} {startup:>11.2f} "
                   f"{ordered.idle / n:>7.2f} {len(base['walls']) * base['sched'] / n:>13.2f} {first:>12.2f} "
                   f"{startup + planned.loop:>19.2f} {base['wall'] / (n * (startup + planned.loop)):>10.3f}")

@@ -30,7 +30,7 @@ from mbds.campaign.tasks import import_for, run_task
 
 POLL = 0.005
 """Sleep between polls of an idle scheduler or worker (s): MPI's blocking receive busy-waits."""
-TASK, RESULT, STOP, QUIT, PREPARE = 1, 2, 3, 4, 5  # MPI message tags
+TASK, RESULT, STOP, QUIT, PREPARE, LOAD = 1, 2, 3, 4, 5, 6  # MPI message tags
 
 
 class Sequential:
@@ -154,14 +154,24 @@ class Ranks:
         for rank in range(1, self._comm.Get_size()):
             self._comm.send(sorted(kinds), dest=rank, tag=PREPARE)
 
-    def close(self) -> None:
+    def load_first(self, plan) -> None:
+        """Let the workers load the compiled model of the plan's first variant before their
+        first task (after the warm-up: the cache holds it)."""
+        first = (plan.job.world_path(), plan.variants[0] if plan.variants else None)
         for rank in range(1, self._comm.Get_size()):
-            self._comm.send(None, dest=rank, tag=QUIT)
+            self._comm.send(first, dest=rank, tag=LOAD)
+
+    def close(self, succeeded: bool = False) -> None:
+        """Release the workers; ``succeeded``: the command exits with 0, so they may leave
+        without the interpreter's teardown (:func:`serve` returns it to them)."""
+        for rank in range(1, self._comm.Get_size()):
+            self._comm.send(succeeded, dest=rank, tag=QUIT)
 
 
-def serve(comm, stopping) -> None:
-    """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit. A run
-    stops early when ``stopping()`` is true (a signal to this process) or rank 0 says so."""
+def serve(comm, stopping) -> bool:
+    """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit; whether
+    rank 0 said the command succeeded. A run stops early when ``stopping()`` is true (a signal
+    to this process) or rank 0 says so."""
     from mpi4py import MPI
 
     status = MPI.Status()
@@ -176,11 +186,24 @@ def serve(comm, stopping) -> None:
             delay = min(2 * delay, POLL)
         message = comm.recv(source=0, tag=status.Get_tag())
         if status.Get_tag() == QUIT:
-            return
+            return bool(message)
         if status.Get_tag() == PREPARE:
             import_for(message)
+        elif status.Get_tag() == LOAD:
+            _load_first(*message)
         elif status.Get_tag() == TASK:
             comm.send((message.id, run_task(message, told_to_stop)), dest=0, tag=RESULT)
+
+
+def _load_first(world, variant) -> None:
+    """Load the first variant's compiled model in this worker; a model that fails to load is
+    left to the tasks, which report why in the ledger."""
+    from mbds.campaign.structures import load_first
+
+    try:
+        load_first(world, variant)
+    except Exception:  # noqa: BLE001  (the same error fails the variant's prepare task, recorded)
+        return
 
 
 def _probe(comm, source: int, tag: int, status) -> bool:

@@ -8,20 +8,40 @@ would keep every worker waiting before the first task. So each chain's prepare t
 finds its variant's structure and returns it (``structure`` in its ledger entry), and the
 scheduling process makes each structure ready (compiles it, or loads it from the cache, and runs
 its stepper for no time) before it hands out the first run that needs it. No task compiles.
+
+A cache that holds a structure compiled already is asked instead (:mod:`mbds.campaign.known_structures`):
+the structure of inputs seen before is remembered, and a structure compiled before is marked, so
+the scheduling process of a campaign whose models were compiled before imports neither sympy nor
+numba; each worker loads the first variant's compiled model before its first task
+(:func:`load_first`).
 """
 
 from __future__ import annotations
 
 import warnings
 
+from mbds.campaign import known_structures as known
 from mbds.campaign.plan import PREPARE, Plan
 from mbds.errors import ModelWarning
 
 
-def structure(files) -> str:
-    """The structure key of the model in ``files`` (a folder's model files, variant values
-    written in)."""
-    return _key(_assembled(files))
+def structure(files, variant=None) -> str:
+    """The structure key of the model of ``files`` (a folder's model files, as read) with
+    ``variant``'s values written in: remembered by the cache for these inputs, else found by
+    code generation and remembered."""
+    digest = known.input_digest(files, variant)
+    key = known.remembered(digest)
+    if key is None:
+        key = _key(_assembled(_with_values(files, variant)))
+        known.remember(digest, key)
+    return key
+
+
+def _with_values(files, variant):
+    """The model ``files`` with ``variant``'s values written in (None: as they are)."""
+    from mbds.campaign.variants import variant_files
+
+    return files if variant is None else variant_files(files, variant)[0]
 
 
 def _assembled(files):
@@ -41,6 +61,26 @@ def _key(model) -> str:
     return source_hash(generate_source(model.expressions))
 
 
+def _run_for_no_time(model) -> None:
+    """Compile ``model`` (or load it from the cache), run its stepper for no time, and mark its
+    structure compiled in the cache."""
+    from mbds.simulation.buffers import RunSettings
+    from mbds.simulation.run import simulate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        simulate(model, RunSettings(break_time=0.0))
+    known.mark_compiled(model.compiled.source_hash)
+
+
+def load_first(world, variant) -> None:
+    """Load the compiled model of ``variant`` of the model of ``world`` in this process (a
+    worker, before its first task) and run its stepper for no time."""
+    from mbds.io.folder import read_model_files
+
+    _run_for_no_time(_assembled(_with_values(read_model_files(world), variant)))
+
+
 def _name(variant) -> str | None:
     return variant.id if variant is not None else None
 
@@ -56,11 +96,6 @@ class Structures:
         self._ready: set[str] = set()
         self._of: dict[str | None, str] = {}
 
-    def _files(self, variant):
-        from mbds.campaign.variants import variant_files
-
-        return self._base if variant is None else variant_files(self._base, variant)[0]
-
     def learn(self, task_id: str, entry: dict) -> None:
         """Note the structure a prepare task found (its ledger ``entry``), if it did."""
         if task_id in self._variant_of and "structure" in entry:
@@ -68,21 +103,17 @@ class Structures:
 
     def make_ready(self, variant) -> bool:
         """Make the structure of ``variant`` (None: the job's own model) ready unless it is;
-        whether it had to be (a structure new to this process)."""
-        from mbds.simulation.buffers import RunSettings
-        from mbds.simulation.run import simulate
-
+        whether it had to be (a structure new to this process). A structure the cache holds
+        compiled is ready without loading it here."""
         name = _name(variant)
-        model = None
         if name not in self._of:
-            model = _assembled(self._files(variant))
-            self._of[name] = _key(model)
-        if self._of[name] in self._ready:
+            self._of[name] = structure(self._base, variant)
+        key = self._of[name]
+        if key in self._ready:
             return False
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ModelWarning)
-            simulate(model or _assembled(self._files(variant)), RunSettings(break_time=0.0))
-        self._ready.add(self._of[name])
+        if not known.compiled(key):
+            _run_for_no_time(_assembled(_with_values(self._base, variant)))
+        self._ready.add(key)
         return True
 
     @property

@@ -116,10 +116,10 @@ def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
     if task.variant is None:
         version = ensure_version(task.folder, 0, task.source)
     else:
-        files, texts = variant_files(files, task.variant)
-        create_model_copy(task.folder, files, 0, texts)
+        changed, texts = variant_files(files, task.variant)
+        create_model_copy(task.folder, changed, 0, texts)
         version = ensure_version(task.folder, 0)
-    return {"state": DONE, "output": str(version), "structure": structure(files)}
+    return {"state": DONE, "output": str(version), "structure": structure(files, task.variant)}
 
 
 @register_task_kind(RUN, SIMULATION)

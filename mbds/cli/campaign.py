@@ -152,6 +152,7 @@ def run(
         serve_worker(comm)
         return
     ranks = executors.Ranks(comm) if comm is not None else None
+    code = None
     try:
         with reported_errors(debug):
             code = _schedule(path, workers, ranks, campaign_cache)
@@ -159,7 +160,7 @@ def run(
         code = exc.exit_code
     finally:
         if ranks is not None:
-            ranks.close()
+            ranks.close(succeeded=code == 0)
     if code and comm is not None:
         # The workers have quit. Finalizing here ends MPI cleanly: a non-zero exit would make
         # `python -m mpi4py` call MPI_Abort, which reports an abort for a mere stop or failure.
@@ -213,6 +214,8 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
     with stop_signals() as stopping:
         report.phase("warm-up: compiling the model, or loading it from the cache")
         structures = warm_up_first(plan)
+        if ranks is not None and structures is not None:
+            ranks.load_first(plan)
         report.phase_done(f"warm-up: {structures.count if structures else 1} distinct model(s) ready"
                           + (", the other variants' checked as their chains are prepared"
                              if structures and len(plan.variants) > 1 else ""))
