@@ -21,6 +21,7 @@ ranks.
 from __future__ import annotations
 
 import multiprocessing
+import os
 import signal
 import time
 from concurrent.futures import Future, ProcessPoolExecutor
@@ -150,9 +151,11 @@ class Ranks:
             self._comm.send(None, dest=rank, tag=STOP)
 
     def prepare(self, kinds) -> None:
-        """Let the workers import what tasks of ``kinds`` need while this process warms up."""
+        """Let the workers import what tasks of ``kinds`` need while this process warms up, and
+        use this process's compile cache (``MBDS_CACHE_DIR``, set by ``run --campaign-cache``
+        after the workers started)."""
         for rank in range(1, self._comm.Get_size()):
-            self._comm.send(sorted(kinds), dest=rank, tag=PREPARE)
+            self._comm.send((sorted(kinds), os.environ.get("MBDS_CACHE_DIR")), dest=rank, tag=PREPARE)
 
     def load_first(self, plan) -> None:
         """Let the workers load the compiled model of the plan's first variant before their
@@ -188,11 +191,19 @@ def serve(comm, stopping) -> bool:
         if status.Get_tag() == QUIT:
             return bool(message)
         if status.Get_tag() == PREPARE:
-            import_for(message)
+            prepare_worker(*message)
         elif status.Get_tag() == LOAD:
             _load_first(*message)
         elif status.Get_tag() == TASK:
             comm.send((message.id, run_task(message, told_to_stop)), dest=0, tag=RESULT)
+
+
+def prepare_worker(kinds, cache_dir: str | None) -> None:
+    """A worker told the plan's task ``kinds`` and rank 0's compile cache: use that cache, and
+    import what the tasks need."""
+    if cache_dir:
+        os.environ["MBDS_CACHE_DIR"] = cache_dir
+    import_for(kinds)
 
 
 def _load_first(world, variant) -> None:

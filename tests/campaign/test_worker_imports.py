@@ -58,3 +58,13 @@ def test_the_console_script_exits_with_the_commands_code_and_its_output_flushed(
     assert done.returncode == 2 and "none.job" in done.stderr
     done = subprocess.run([str(console), "--help"], capture_output=True, text=True)
     assert done.returncode == 0 and "Run-in wear campaigns" in done.stdout
+
+
+def test_workers_use_the_compile_cache_of_rank_0():
+    """``run --campaign-cache`` sets the cache folder in rank 0 after the workers started: they
+    learn it with the plan's task kinds, so that they load what rank 0 compiled."""
+    code = ("import os\nfrom mbds.campaign.executors import prepare_worker\nfrom mbds.expr.cache import default_cache_dir\n"
+            "prepare_worker([], '/campaign/.cache')\nprint(default_cache_dir())")
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "MBDS_CACHE_DIR": "/elsewhere"}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert done.stdout.strip() == "/campaign/.cache"
