@@ -173,16 +173,21 @@ def _firsts(tasks: dict, start: dict) -> set[str]:
 
 
 def _first_task_extra(tasks: dict, start: dict) -> float:
-    """Mean extra wall time (s) of each worker's first run task over the mean run task."""
+    """Mean extra wall time (s) of each worker's first run task over the mean of the other runs
+    of the same version (``*/000/run`` for a first run of version 000: the versions' runs differ
+    as the bodies wear)."""
     runs = {k: e for k, e in tasks.items() if k.endswith("/run")}
-    if not runs:
-        return 0.0
-    mean = np.mean([e["wall"] for e in runs.values()])
     firsts = []
     for rank in {e.get("rank") for e in runs.values()} - {None}:
         first = min((k for k, e in runs.items() if e.get("rank") == rank), key=start.get)
-        firsts.append(runs[first]["wall"] - mean)
+        others = [e["wall"] for k, e in runs.items() if k != first and _version(k) == _version(first)]
+        firsts.append(runs[first]["wall"] - (np.mean(others) if others else runs[first]["wall"]))
     return float(np.mean(firsts)) if firsts else 0.0
+
+
+def _version(task_id: str) -> str:
+    """The version number in a task id (``v03/002/run`` -> ``002``)."""
+    return next(part for part in task_id.split("/") if part.isdigit())
 
 
 def _seconds(stamp: str) -> float:

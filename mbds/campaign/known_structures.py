@@ -6,17 +6,18 @@ compiled module with numba and running its stepper for no time. For a campaign w
 compiled before, the scheduling process needs neither: it asks the cache.
 
 - :func:`input_digest`: a digest of everything the generated code is made from: mbds's own
-  code (its version and every source file of the package), sympy's and Python's versions, the bytes of every model file the
-  world file names (by name relative to the world file's folder, absent files listed), and the
-  variant's values. Any change to the inputs changes it.
+  code (its version and every source file of the package), sympy's and Python's versions, the
+  bytes of every model file the world file names (by name relative to the world file's folder,
+  absent files listed), and the variant's values. Any change to the inputs changes it.
 - :func:`remember` / :func:`remembered`: the cache's memo, ``<cache>/keys/<digest>`` holding the
   structure found for these inputs by code generation. A memo is only ever a hint for
   scheduling: a run always generates its own code, whose hash names the module it loads, so a
   stale memo can at worst let a task compile (counted in the ledger), never run wrong code.
 - :func:`mark_compiled` / :func:`compiled`: ``<cache>/mbds_model_<key>.ready``, written once a
   process has run the structure's stepper from this cache, holding the versions of numba and
-  Python and the machine it ran on; it counts only while these match this process's and it is
-  newer than the module file (numba keys its machine code on that file's time).
+  Python, the machine it ran on and the names of numba's index files of the module; it counts
+  only while these match this process's, the index files are there, and it is newer than the
+  module file (numba keys its machine code on that file's time).
 """
 
 from __future__ import annotations
@@ -89,9 +90,14 @@ def _ready_path(key: str) -> Path:
     return cache.default_cache_dir() / f"{cache.PREFIX}{key}{READY_SUFFIX}"
 
 
+def _index_files(key: str) -> list[str]:
+    """The names of numba's index files of structure ``key``'s functions in the cache."""
+    return sorted(path.name for path in (cache.default_cache_dir() / "__pycache__").glob(f"{cache.PREFIX}{key}.*.nbi"))
+
+
 def mark_compiled(key: str) -> None:
     """Note that this process ran the stepper of structure ``key`` from the cache."""
-    _write(_ready_path(key), json.dumps(_environment()))
+    _write(_ready_path(key), json.dumps(_environment() | {"index": _index_files(key)}))
 
 
 def compiled(key: str) -> bool:
@@ -100,9 +106,11 @@ def compiled(key: str) -> bool:
     try:
         if marker.stat().st_mtime < module.stat().st_mtime:
             return False
-        return json.loads(marker.read_text()) == _environment()
+        noted = json.loads(marker.read_text())
     except (OSError, ValueError):
         return False
+    index = noted.pop("index", None)
+    return noted == _environment() and bool(index) and set(index) <= set(_index_files(key))
 
 
 def _write(path: Path, text: str) -> None:

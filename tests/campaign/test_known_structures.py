@@ -93,6 +93,11 @@ def test_the_compiled_mark(tmp_path, cache):
     marker.write_text(json.dumps(other))
     assert not known.compiled(key)  # another numba compiled it
     known.mark_compiled(key)
+    assert known.compiled(key)
+    index = sorted((cache / "__pycache__").glob(f"mbds_model_{key}.advance-*.nbi"))
+    moved = index[0].rename(index[0].with_suffix(".away"))
+    assert not known.compiled(key)  # numba's index of the stepper is gone
+    moved.rename(index[0])
     module = cache / f"mbds_model_{key}.py"
     os.utime(module, (marker.stat().st_mtime + 10,) * 2)
     assert not known.compiled(key)  # the module is newer than the mark: numba's code is stale
