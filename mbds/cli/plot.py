@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 from mbds.errors import ModelError
@@ -74,6 +75,7 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
     matplotlib.use("Agg")
     from mbds import open_campaign, plot
     from mbds.campaign.plan import DAP_BC, expand
+    from mbds.plot.batch import save_figures
 
     plan = expand(job)
     if plan.model == DAP_BC:
@@ -81,14 +83,12 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
                          "mbds.open_campaign (docs/campaigns.md, 'DAP_BC models')", job)
     folder = output or plan.folder / "figures"
     folder.mkdir(parents=True, exist_ok=True)
-    tree = open_campaign(plan.folder, runs=False)  # the figures read the summary alone
-    try:
-        written = [plot.save(plot.campaign_summary(tree), folder / "summary.png")]
-        root = tree.ds
-        loss = root["point_lost_work"].sum([d for d in root["point_lost_work"].dims if d != "point"])
-        for index, name in enumerate(str(b) for b in root["body"].values):
-            if float(loss.values[root["point_body"].values == index].sum()) > 0:
-                written.append(plot.save(plot.wear(tree, name), folder / f"wear_{name}.png"))
-    finally:
-        tree.close()
-    return written
+    # the figures read the summary alone, read here once: the figures are drawn at once by
+    # forked processes, which must not share an open file
+    tree = open_campaign(plan.folder, load=True, runs=False)
+    root = tree.ds
+    loss = root["point_lost_work"].sum([d for d in root["point_lost_work"].dims if d != "point"])
+    worn = [name for index, name in enumerate(str(b) for b in root["body"].values)
+            if float(loss.values[root["point_body"].values == index].sum()) > 0]
+    drawings = [(functools.partial(plot.wear, tree, name), folder / f"wear_{name}.png") for name in worn]
+    return save_figures([(functools.partial(plot.campaign_summary, tree), folder / "summary.png"), *drawings])
