@@ -106,7 +106,7 @@ class Described:
         for name, dims, attrs, encoding, dtype in layout.in_file:
             shape = tuple(header["dims"][d] for d in dims)
             lazy = indexing.LazilyIndexedArray(_FileVariable(path, name, shape, dtype), _whole(len(dims)))
-            variables[name] = xr.Variable(dims, lazy, attrs, encoding)
+            variables[name] = xr.Variable(dims, lazy, attrs, encoding, fastpath=True)  # lazy: taken as it is
         sizes, indexes = dict(layout.sizes), dict(layout.indexes)
         if long in sizes:
             sizes[long] = header["dims"][long]
