@@ -93,4 +93,6 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
     worn = [name for index, name in enumerate(str(b) for b in root["body"].values)
             if float(loss.values[root["point_body"].values == index].sum()) > 0]
     drawings = [(functools.partial(plot.wear, tree, name), folder / f"wear_{name}.png") for name in worn]
-    return save_figures([(functools.partial(plot.campaign_summary, tree), folder / "summary.png"), *drawings])
+    # the wear figures (a panel per variant) take longest: they start first
+    *wear, summary = save_figures([*drawings, (functools.partial(plot.campaign_summary, tree), folder / "summary.png")])
+    return [summary, *wear]
