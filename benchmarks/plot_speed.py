@@ -4,7 +4,7 @@
    30 frames/s into a GIF: ``mbds animate`` timed as a command (interpreter start and imports in)
    and ``mbds.plot.animate`` + ``save`` timed in this process.
 2. A campaign of 64 chains x 10 versions (a copy of campaigns/2mass varying ``c'gravity`` and the
-   friction over 8 values each, breakTime 5 ms, versions 000-009, 640 runs), collected; then
+   friction over 8 values each, breakTime 5 ms or ``--break-time``, versions 000-009, 640 runs), collected; then
    ``mbds-campaign plot`` (its summary, and the worn shapes of the bodies that lost work: none in
    runs this short) timed as a command, and opening the campaign, the summary and the worn shapes
    of mass1 (64 panels) timed in this process.
@@ -13,8 +13,10 @@ Run from the repository root: ``.venv/bin/python benchmarks/plot_speed.py``. The
 minutes on 2 cores; the figures are what is timed. Options: ``--campaign-only`` leaves out the
 animation; ``--keep FOLDER`` makes the campaign in ``FOLDER`` and uses it again on the next call
 (it is made again when ``FOLDER`` holds no collected campaign); ``--repeat N`` times the campaign's
-figures N times. The command is run as ``python -m mbds.cli.campaign plot``, the module behind the
-``mbds-campaign`` script.
+figures N times; ``--break-time 0.1`` makes the campaign's runs 0.1 s long, so that both masses
+lose work and wear and ``mbds-campaign plot`` draws their worn shapes too (with ``--keep``, the
+campaign is made again when its job differs). The command is run as
+``python -m mbds.cli.campaign plot``, the module behind the ``mbds-campaign`` script.
 """
 
 from __future__ import annotations
