@@ -43,6 +43,7 @@ from mbds.campaign.replicates import identical_replicates
 from mbds.campaign.section import ENSEMBLE
 from mbds.data.history import FILE_NAME as HISTORY
 from mbds.data.references import Described, describe
+from mbds.data.tree import grown
 from mbds.errors import ModelError
 from mbds.io.text import atomic_path
 
@@ -135,34 +136,6 @@ def run_nodes(path: Path) -> dict[str, xr.Dataset]:
                                                  starts, ends):
             nodes[node] = described.open(path.parent / file, description, times[a:b])
     return nodes
-
-
-def grown(root: xr.Dataset, nodes: dict[str, xr.Dataset]) -> xr.DataTree:
-    """The tree ``DataTree.from_dict({"/": root, **nodes})`` makes (paths absolute, parents made
-    empty where missing), grown from the root down: each node is made once and joined to its
-    parent once, where ``from_dict`` copies a node again for every level it is set through.
-    The datasets of ``nodes`` become the nodes themselves: they must not be used elsewhere."""
-    made = {"/": xr.DataTree(root)}
-    children: dict[str, dict[str, xr.DataTree]] = {}
-    for path in nodes:
-        parts = path.strip("/").split("/")
-        for depth in range(1, len(parts) + 1):
-            here = "/" + "/".join(parts[:depth])
-            if here not in made:
-                made[here] = _node(nodes.get(here))
-                children.setdefault("/" + "/".join(parts[:depth - 1]), {})[parts[depth - 1]] = made[here]
-    for parent, named in children.items():  # parents first: each node is checked against its parents once
-        made[parent].children = named
-    return made["/"]
-
-
-def _node(ds: xr.Dataset | None) -> xr.DataTree:
-    """A tree node holding ``ds`` itself: ``DataTree(ds)`` would copy it, at a third of the cost
-    of opening a campaign."""
-    node = xr.DataTree()
-    if ds is not None:
-        node._set_node_data(ds)
-    return node
 
 
 def node_path(plan: Plan, task: Task) -> str:

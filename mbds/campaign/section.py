@@ -74,6 +74,15 @@ def _checked_folder(text: str, job_path, line: int | None) -> str:
     return text
 
 
+def campaign_folder(job: JobFile) -> Path:
+    """The campaign folder ``job`` names (its ``[campaign]`` section's ``folder``, checked), read
+    without the model: for commands that only read what a campaign wrote."""
+    name = next((n for n in job.extra_sections if n.lower() == "campaign"), None)
+    given = [located for key, located in job.extra_sections.get(name, []) if key.lower() == "folder"]
+    folder = _checked_folder(given[0].text, job.path, given[0].line) if given else CampaignSection.folder
+    return job.path.parent / folder
+
+
 def parse_campaign(job: JobFile, files: ModelFiles | None, varied: VariedKeys | None = None) -> CampaignSection | None:
     """The job's ``[campaign]`` section checked against the model ``files`` (an MBDS model), or
     with the ``varied`` keys of another kind of model; None without one."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 from mbds.errors import ModelError
@@ -73,22 +74,25 @@ def campaign_plot_command(job: Path, output: Path | None) -> list[Path]:
 
     matplotlib.use("Agg")
     from mbds import open_campaign, plot
-    from mbds.campaign.plan import DAP_BC, expand
+    from mbds.campaign.section import campaign_folder
+    from mbds.io.dapbc_job import is_dapbc_job
+    from mbds.io.job import read_checked_job
+    from mbds.plot.batch import save_figures
 
-    plan = expand(job)
-    if plan.model == DAP_BC:
+    if is_dapbc_job(job):
         raise ModelError("mbds-campaign plot draws wear campaigns; draw a DAP_BC campaign's runs from "
                          "mbds.open_campaign (docs/campaigns.md, 'DAP_BC models')", job)
-    folder = output or plan.folder / "figures"
+    campaign = campaign_folder(read_checked_job(job))  # the model is not read: the campaign file has what is drawn
+    folder = output or campaign / "figures"
     folder.mkdir(parents=True, exist_ok=True)
-    tree = open_campaign(plan.folder, runs=False)  # the figures read the summary alone
-    try:
-        written = [plot.save(plot.campaign_summary(tree), folder / "summary.png")]
-        root = tree.ds
-        loss = root["point_lost_work"].sum([d for d in root["point_lost_work"].dims if d != "point"])
-        for index, name in enumerate(str(b) for b in root["body"].values):
-            if float(loss.values[root["point_body"].values == index].sum()) > 0:
-                written.append(plot.save(plot.wear(tree, name), folder / f"wear_{name}.png"))
-    finally:
-        tree.close()
-    return written
+    # the figures read the summary alone, read here once: the figures are drawn at once by
+    # forked processes, which must not share an open file
+    tree = open_campaign(campaign, load=True, runs=False)
+    root = tree.ds
+    loss = root["point_lost_work"].sum([d for d in root["point_lost_work"].dims if d != "point"])
+    worn = [name for index, name in enumerate(str(b) for b in root["body"].values)
+            if float(loss.values[root["point_body"].values == index].sum()) > 0]
+    drawings = [(functools.partial(plot.wear, tree, name), folder / f"wear_{name}.png") for name in worn]
+    # the wear figures (a panel per variant) take longest: they start first
+    *wear, summary = save_figures([*drawings, (functools.partial(plot.campaign_summary, tree), folder / "summary.png")])
+    return [summary, *wear]

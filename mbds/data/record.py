@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,7 +23,9 @@ from mbds.io.coordinates import CoordinateName
 from mbds.kernel import layout as K
 from mbds.model.arrays import flatten
 from mbds.model.bodies import FIXED, Body
-from mbds.model.load import Model
+
+if TYPE_CHECKING:  # the loader imports sympy: reading outputs does not need it
+    from mbds.model.load import Model
 
 COUNTERS = {
     "steps": K.STEPS,

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 from pathlib import Path
 from typing import NamedTuple
 
@@ -30,6 +31,11 @@ from xarray.core import indexing
 from xarray.indexes import Index, PandasIndex
 
 from mbds.errors import ModelError
+
+_JSON = json.JSONDecoder()
+_SPACE = re.compile(r"\s*")
+_SHARED = ("variables", "index")
+"""The parts of a description that runs of one layout share (see ``Described._parsed``)."""
 
 
 def describe(path: str | Path, long_index: str = "time", read: tuple[str, ...] = ()) -> tuple[str, np.ndarray, dict]:
@@ -83,10 +89,11 @@ class Described:
     def __init__(self):
         self._layouts: list[_Layout] = []
         self._long_indexes: dict[tuple, tuple[xr.Variable, Index]] = {}
+        self._known: dict[str, dict[str, dict]] = {}  # key -> JSON text of a value -> the value
 
     def open(self, path: str | Path, description: str, long_values: np.ndarray) -> xr.Dataset:
         """The dataset of the file ``path`` that ``description`` describes (see :func:`open_described`)."""
-        header = json.loads(description)
+        header = self._parsed(description)
         path = Path(path)
         long = header["long_index"]
         key = _LayoutKey(header["variables"], header["index"], long, header["attrs"].get("coordinates", ""),
@@ -99,7 +106,7 @@ class Described:
         for name, dims, attrs, encoding, dtype in layout.in_file:
             shape = tuple(header["dims"][d] for d in dims)
             lazy = indexing.LazilyIndexedArray(_FileVariable(path, name, shape, dtype), _whole(len(dims)))
-            variables[name] = xr.Variable(dims, lazy, attrs, encoding)
+            variables[name] = xr.Variable(dims, lazy, attrs, encoding, fastpath=True)  # lazy: taken as it is
         sizes, indexes = dict(layout.sizes), dict(layout.indexes)
         if long in sizes:
             sizes[long] = header["dims"][long]
@@ -108,6 +115,30 @@ class Described:
         attrs = {key: value for key, value in header["attrs"].items() if key != "coordinates"}
         # xarray's constructor would check again what the layout's first dataset was checked for
         return xr.Dataset._construct_direct(variables, set(layout.coord_names), sizes, attrs, indexes)
+
+    def _parsed(self, description: str) -> dict:
+        """The description read from its JSON text. Its variables and index values, half of the
+        text and the same for runs of one layout, are read once: where the text of a layout's
+        value stands in a description, the value read before is taken (a JSON object's text ends
+        where the object does), which also makes comparing layouts an identity check."""
+        if not description.startswith("{"):
+            return json.loads(description)  # json says what is wrong
+        header, at = {}, _past(description, 0, "{")
+        while not description.startswith("}", at):
+            key, at = _JSON.raw_decode(description, at)
+            at = _past(description, at, ":")
+            known = self._known.setdefault(key, {}) if key in _SHARED else {}
+            text = next((text for text in known if description.startswith(text, at)), None)
+            if text is None:
+                header[key], end = _JSON.raw_decode(description, at)
+                if key in _SHARED:
+                    known[description[at:end]] = header[key]
+            else:
+                header[key], end = known[text], at + len(text)
+            at = _SPACE.match(description, end).end()
+            if not description.startswith("}", at):
+                at = _past(description, at, ",")
+        return header
 
     def _long_index(self, variable: xr.Variable, values: np.ndarray) -> tuple[xr.Variable, Index]:
         """The long index coordinate (the sample times) with ``values``, one per distinct values."""
@@ -210,6 +241,14 @@ class _FileVariable(BackendArray):
         except (OSError, KeyError) as exc:
             raise ModelError(f"cannot read {self.name} from this run file ({exc}); collect the campaign again "
                              "if its runs were moved or run again", self.path) from None
+
+
+def _past(text: str, at: int, mark: str) -> int:
+    """Where the JSON ``text`` goes on after the ``mark`` (with spaces around it) at ``at``."""
+    at = _SPACE.match(text, at).end()
+    if not text.startswith(mark, at):
+        raise json.JSONDecodeError(f"expected {mark!r}", text, at)
+    return _SPACE.match(text, at + 1).end()
 
 
 def _plain(value):

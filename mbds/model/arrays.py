@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mbds.kernel.layout import AMBIENT, COOLING, HEAT_COLUMNS, HEATING
-from mbds.model.load import Model
+
+if TYPE_CHECKING:  # the loader imports sympy; reading outputs needs only these arrays
+    from mbds.model.load import Model
 
 
 @dataclass

@@ -47,10 +47,11 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
     margins = {"left": 0.8 / width, "right": 1.0 - 1.2 / width, "bottom": 0.5 / height, "top": 1.0 - 0.6 / height,
                "wspace": 0.3, "hspace": 0.35}
     figure = Figure(figsize=(width, height))
-    axes = np.atleast_1d(figure.subplots(rows, columns, sharex=True, sharey=True, squeeze=False,
-                                         gridspec_kw=margins)).ravel()
-    axes[0].xaxis.set_major_locator(MaxNLocator(4))  # the panels share their axes and locators:
-    axes[0].yaxis.set_major_locator(MaxNLocator(4))  # fewer ticks, each made and drawn per panel
+    grid = figure.add_gridspec(rows, columns, **margins)
+    # the panels do not share their axes (matplotlib would compare every panel's limits with all
+    # the others' each time one is read): they get the same limits, as shared ones would
+    axes = [figure.add_subplot(grid[k // columns, k % columns]) for k in range(rows * columns)]
+    limits = [_limits(values) for values in (x, y)]
     shades = VERSION_COLORS(np.linspace(0.0, 1.0, len(shown)))
     for k, (ax, panel) in enumerate(zip(axes, panels)):
         # one call for the panel's outlines (one line each), closed by their first point
@@ -58,13 +59,15 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
         for line, shade, version in zip(lines, shades, shown):
             line.set_color(shade)
             line.set_label(f"version {version:03d}")
-        ax.set_aspect("equal")
+        ax.set(xlim=limits[0], ylim=limits[1], aspect="equal")
+        ax.xaxis.set_major_locator(MaxNLocator(4))  # fewer ticks, each made and drawn per panel
+        ax.yaxis.set_major_locator(MaxNLocator(4))
         # a title at a fixed height: matplotlib otherwise measures every panel's tick labels to
         # place it (a third of the drawing time of 64 panels)
         ax.set_title(str(panel), fontsize="medium", y=1.0, pad=4.0)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
-        ax.label_outer()  # shared axes: labels on the outer panels only, and inner panels
+        ax.label_outer()  # the same limits everywhere: labels on the outer panels only, and inner panels
         spec = ax.get_subplotspec()  # without tick marks (most of the drawing time is ticks)
         ax.xaxis.set_visible(spec.is_last_row() or k + columns >= len(panels))
         ax.yaxis.set_visible(spec.is_first_col())
@@ -75,6 +78,15 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
                                              margins["top"] - margins["bottom"])), label="version")
     figure.suptitle(f"{body} worn: {title}", y=1.0 - 0.3 / height, va="center")
     return figure
+
+
+def _limits(values: np.ndarray) -> tuple[float, float] | None:
+    """The axis limits that hold ``values`` (m) with matplotlib's margins (None: all NaN)."""
+    low, high = np.nanmin(values, initial=np.inf), np.nanmax(values, initial=-np.inf)
+    if not np.isfinite(low):
+        return None
+    pad = 0.05 * (high - low) if high > low else 0.05 * max(abs(low), 1.0)
+    return low - pad, high + pad
 
 
 def _shape_table(source, replicate: int) -> tuple[xr.Dataset, str]:

@@ -2,6 +2,8 @@
 history.nc as xarray opens it, no run file is read before a value is used, and a moved run
 file gives a clear error."""
 
+import json
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -43,6 +45,20 @@ def test_runs_of_one_layout_share_it_and_still_open_as_xarray_opens_them(collect
         opened.append(ds)
     assert {ds.sizes["time"] for ds in opened} == {301, 401}  # breakTime 0.15 s and 0.2 s, a sample per 0.5 ms
     assert all(ds.xindexes["watch"] is opened[0].xindexes["watch"] for ds in opened)  # one layout, shared
+
+
+def test_descriptions_read_their_shared_parts_once(collected):
+    plan, _ = collected
+    opener = Described()
+    descriptions = [describe(history)[0] for history in sorted(plan.folder.glob("v*/*/history.nc"))]
+    headers = [opener._parsed(text) for text in descriptions]
+    assert headers == [json.loads(text) for text in descriptions]
+    assert all(h["variables"] is headers[0]["variables"] and h["index"] is headers[0]["index"] for h in headers)
+    assert len({id(h["attrs"]) for h in headers}) == len(headers)  # each run its own attributes
+    spaced = json.dumps(headers[0], indent=1)
+    assert opener._parsed(spaced) == headers[0]
+    with pytest.raises(ValueError, match="expected ':'"):
+        opener._parsed('{"dims" {}}')
 
 
 def test_the_tree_is_the_summary_with_a_node_per_run_file(collected):

@@ -5,7 +5,7 @@ import pytest
 from typer.testing import CliRunner
 
 from mbds.cli.main import app
-from tests.campaign.models import campaign
+from tests.campaign.models import campaign, two_mass
 
 
 def mbds(*args):
@@ -56,3 +56,14 @@ def test_campaign_plot_writes_the_summary_and_the_worn_shapes(campaign_job, tmp_
     code, stdout, stderr = campaign("plot", campaign_job, "-o", tmp_path)
     assert code == 0, stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.png", "wear_mass1.png", "wear_mass2.png"]
+
+
+@pytest.mark.parametrize(("section", "message"), [
+    ("c'gravity = 9, 10\nfolder = results\n", "results/campaign.nc: no campaign file; collect the campaign first"),
+    ("c'gravity = 9, 10\nfolder = ../elsewhere\n", "folder '../elsewhere' is not inside the job file's folder"),
+    (None, "campaign/campaign.nc: no campaign file"),
+])
+def test_campaign_plot_finds_the_campaign_folder_the_job_names(tmp_path, section, message):
+    job = two_mass(tmp_path, section)
+    code, _, stderr = campaign("plot", job)
+    assert code == 2 and message in stderr
