@@ -16,6 +16,10 @@ try:  # joining without the check uses the tree's own fields; elsewhere every no
     from xarray.core.datatree import _deduplicate_inherited_coordinates
 except ImportError:  # pragma: no cover - another xarray
     _deduplicate_inherited_coordinates = None
+_PROBE = xr.DataTree()
+_FIELDS = _deduplicate_inherited_coordinates is not None and all(
+    hasattr(_PROBE, name) for name in ("_set_node_data", "_set_parent", "_children", "_parent", "_name"))
+del _PROBE
 
 
 def grown(root: xr.Dataset, nodes: dict[str, xr.Dataset]) -> xr.DataTree:
@@ -41,6 +45,8 @@ def grown(root: xr.Dataset, nodes: dict[str, xr.Dataset]) -> xr.DataTree:
 def _node(ds: xr.Dataset | None) -> xr.DataTree:
     """A tree node holding ``ds`` itself: ``DataTree(ds)`` would copy it, at a third of the cost
     of opening a campaign."""
+    if not _FIELDS:
+        return xr.DataTree(ds)
     node = xr.DataTree()
     if ds is not None:
         node._set_node_data(ds)
@@ -51,8 +57,8 @@ def _join(parent: xr.DataTree, named: dict[str, xr.DataTree], checked: set[tuple
     """``parent.children = named`` for new nodes (without parents or children of their own): a
     node whose :func:`_meeting` key is in ``checked`` is joined as xarray joins a node once it has
     checked it, the others are checked by xarray as they join (and their keys kept in ``checked``)."""
-    if _deduplicate_inherited_coordinates is None:
-        parent.children = named
+    if not _FIELDS:
+        parent.children = {**parent.children, **named}
         return
     indexes, sizes = dict(parent.xindexes), dict(parent.sizes)
     taken = set(parent.dataset.variables)
