@@ -40,10 +40,11 @@ def wear(source, body: str, versions: list[int] | None = None, replicate: int = 
     x = table["shape_x"].sel(version=shown).isel(point=mine).values
     y = table["shape_y"].sel(version=shown).isel(point=mine).values
     panels = table["panel"].values
-    columns = min(len(panels), 4)
+    columns = min(len(panels), max(4, int(np.ceil(np.sqrt(len(panels))))))
     rows = -(-len(panels) // columns)
     # fixed margins in inches: a constrained layout of 64 panels takes seconds to compute
-    width, height = 3.2 * columns + 1.6, 3.2 * rows + 0.9
+    side = 3.2 if columns <= 4 else 2.2  # inches per panel
+    width, height = side * columns + 1.6, side * rows + 0.9
     margins = {"left": 0.8 / width, "right": 1.0 - 1.2 / width, "bottom": 0.5 / height, "top": 1.0 - 0.6 / height,
                "wspace": 0.3, "hspace": 0.35}
     figure = Figure(figsize=(width, height))
