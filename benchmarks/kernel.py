@@ -1,7 +1,9 @@
 """Time the stepping kernel on the example models, and mbds against Siconos on a bouncing ball.
 
 Run from the repository root: ``.venv/bin/python benchmarks/kernel.py``; ``--only
-ball,woodpecker`` runs only the named parts (examples, stick-slip, woodpecker, ball).
+ball,woodpecker`` runs only the named parts (examples, stick-slip, woodpecker, ball);
+``--sweep-time`` (default 1.5 s, the whole run) and ``--amplitudes`` set the stick-slip sweep
+of campaigns/wearballs over c'omega (and c'amplitude).
 
 Per example (campaigns/2mass 0.5 s, wearballs 1.5 s, woodpecker 1 s of simulated time):
 
@@ -250,29 +252,36 @@ def bouncing_ball(cache_root: Path) -> None:
 OMEGAS = (40.0, 50.0, 62.83185307, 80.0, 100.0)
 """c'omega (rad/s) of the wearballs drive swept by :func:`stick_slip`."""
 
-SWEEP_TIME = 0.3
-"""Simulated time (s) of each run of the sweep."""
+AMPLITUDES = (0.005,)
+"""c'amplitude (m) of the sweep; ``--amplitudes 0.003,0.004,0.005,0.006`` runs more."""
+
+SWEEP_TIME = 1.5
+"""Simulated time (s) of each run of the sweep: the whole run of campaigns/wearballs, so the
+impacts of its later part count (``--sweep-time`` changes it)."""
 
 
-def stick_slip(cache_root: Path) -> None:
-    """Wall time per simulated second of campaigns/wearballs across its drive frequency c'omega:
-    resting and stick-slip regimes must not collapse the step (goal: all within 3x of the
-    fastest). The variants differ in a constant only, so they share one compiled model."""
+def stick_slip(cache_root: Path, sweep_time: float = SWEEP_TIME, amplitudes=AMPLITUDES) -> None:
+    """Wall time per simulated second of campaigns/wearballs across its drive frequency c'omega
+    (and amplitude): resting and stick-slip regimes must not collapse the step (goal: all within
+    3x of the fastest). The variants differ in constants only, so they share one compiled model."""
     print("\n## stick-slip: wearballs across c'omega\n")
-    print("| c'omega rad/s | steps | mean step s | wall s per simulated s |")
-    print("|---|---|---|---|")
+    print("| c'amplitude m | c'omega rad/s | steps | impacts | mean step s | wall s per simulated s |")
+    print("|---|---|---|---|---|---|")
     os.environ["MBDS_CACHE_DIR"] = str(cache_root / "wearballs")
     costs = []
     with tempfile.TemporaryDirectory() as tmp:
-        for omega in OMEGAS:
-            folder = Path(tmp) / f"omega{omega:g}"
-            shutil.copytree(ROOT / "campaigns" / "wearballs", folder)
-            cns = folder / "wearballs.cns"
-            cns.write_text("".join(f"c'omega = {omega!r}\n" if line.startswith("c'omega") else line
-                                   for line in cns.read_text().splitlines(keepends=True)))
-            steps, wall, _ = timed_run(folder, SWEEP_TIME)
-            costs.append(wall / SWEEP_TIME)
-            print(f"| {omega:g} | {steps:.0f} | {SWEEP_TIME / steps:.2e} | {costs[-1]:.2f} |")
+        for amplitude in amplitudes:
+            for omega in OMEGAS:
+                folder = Path(tmp) / f"a{amplitude:g}omega{omega:g}"
+                shutil.copytree(ROOT / "campaigns" / "wearballs", folder)
+                cns = folder / "wearballs.cns"
+                cns.write_text("".join(f"c'omega = {omega!r}\n" if line.startswith("c'omega") else
+                                       f"c'amplitude = {amplitude!r}\n" if line.startswith("c'amplitude") else line
+                                       for line in cns.read_text().splitlines(keepends=True)))
+                steps, wall, result = timed_run(folder, sweep_time)
+                costs.append(wall / sweep_time)
+                print(f"| {amplitude:g} | {omega:g} | {steps:.0f} | {result.state.clock[K.IMPACTS]:.0f} | "
+                      f"{sweep_time / steps:.2e} | {costs[-1]:.3f} |")
     print(f"\nslowest / fastest: {max(costs) / min(costs):.2f} (goal: at most 3)")
 
 
@@ -307,13 +316,20 @@ PARTS = {"examples": examples, "stick-slip": stick_slip, "woodpecker": woodpecke
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", default=",".join(PARTS), help=f"comma-separated parts of {', '.join(PARTS)}")
-    chosen = parser.parse_args().only.split(",")
+    parser.add_argument("--sweep-time", type=float, default=SWEEP_TIME,
+                        help=f"simulated seconds of each stick-slip run (default {SWEEP_TIME})")
+    parser.add_argument("--amplitudes", default=",".join(map(str, AMPLITUDES)),
+                        help="comma-separated c'amplitude values (m) of the stick-slip sweep")
+    args = parser.parse_args()
+    chosen = args.only.split(",")
     unknown = sorted(set(chosen) - set(PARTS))
     if unknown:
         parser.error(f"unknown part(s): {', '.join(unknown)}")
     with tempfile.TemporaryDirectory() as tmp:
         for name, part in PARTS.items():
-            if name in chosen:
+            if name == "stick-slip" and name in chosen:
+                stick_slip(Path(tmp), args.sweep_time, tuple(float(a) for a in args.amplitudes.split(",")))
+            elif name in chosen:
                 part(Path(tmp))
     print("\ngoals: start-up warm < 2 s; woodpecker sim s / wall s > 1 (1 s simulated in under 1 s)")
 

@@ -31,8 +31,9 @@ from mbds.kernel.layout import (
     PIVOT_MAX,
     PIVOT_MIN,
 )
+from mbds.kernel.active_set import recall_states, remember_states, solve_states
 from mbds.kernel.lcp import SOLVED, lemke
-from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row
+from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope
 from mbds.kernel.rollback import edge_end_point
 
 REST_FRACTION = 0.01
@@ -49,20 +50,31 @@ STICK_RELAXATION = 10.0
 """Time constant (in maximum steps) of the decay of a sticking contact's remaining sliding speed."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
+STATE_ROUNDS = 4
+"""Rounds of state changes tried from the remembered contact states before Lemke's method
+takes over (see :func:`solve` and mbds.kernel.active_set)."""
+COMPRESSION, EXPANSION = range(2)
+"""Families of LCPs whose contact states are remembered apart: the compression and the
+expansion phases of impacts."""
+LEMKE_ONLY = -1
+"""The family of the contact-force LCPs, solved by Lemke's method alone (see :func:`solve`)."""
 
 
 @jit(refcount=False)
-def inverse_mass_rows(L, rows, index, count, Y):
-    """Y[i] = M^-1 rows[i] for the rows i in index[:count] (L: Cholesky factor of M)."""
+def inverse_mass_rows(L, profile, rows, index, count, Y):
+    """Y[i] = M^-1 rows[i] for the rows i in index[:count] (L: Cholesky factor of M, profile:
+    its envelope)."""
     for c in range(count):
-        cholesky_solve_row(L, rows, index[c], Y)
+        cholesky_solve_row(L, profile, rows, index[c], Y)
 
 
 @jit(inline="always")
-def rows_dot(A, i, B, j):
-    """sum_k A[i, k] B[j, k] (row i of A with row j of B, no array views)."""
+def span_dot(A, i, B, j, span, a):
+    """sum_k A[i, k] B[j, k] (row i of A with row j of B, no array views), over the columns
+    span[a, 0] <= k < span[a, 1] outside which row i of A is zero (:func:`row_spans`): the
+    products left out are with exact zeros, so the sum is that over all columns."""
     s = 0.0
-    for k in range(A.shape[1]):
+    for k in range(span[a, 0], span[a, 1]):
         s += A[i, k] * B[j, k]
     return s
 
@@ -77,14 +89,33 @@ def row_dot(A, i, v):
 
 
 @jit(refcount=False)
-def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_flat):
+def row_spans(active, na, WN, WT, span):
+    """span[a] = (first, last + 1) of the coordinates where row active[a] of WN or WT is nonzero
+    (a contact moves the coordinates of its two bodies only); (0, 0) for zero rows."""
+    n = WN.shape[1]
+    for a in range(na):
+        c = active[a]
+        first = n
+        last = -1
+        for k in range(n):
+            if WN[c, k] != 0.0 or WT[c, k] != 0.0:
+                first = min(first, k)
+                last = k
+        span[a, 0] = min(first, last + 1)
+        span[a, 1] = last + 1
+
+
+@jit(refcount=False)
+def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, span, A_flat):
     """Fill the matrix A (size m = na + 2 nh, row-major in A_flat[:m * m]) for the contacts
     active[:na]; return nh.
 
     column: (cap, n) scratch for M^-1 times the effective normal column of each contact;
-    hrow: (cap,) int64 scratch, the index in ``active`` of each stick candidate.
+    hrow: (cap,) int64 scratch, the index in ``active`` of each stick candidate; span: (cap, 2)
+    int64, the nonzero span of each contact's rows (:func:`row_spans`), filled here.
     """
     n = WN.shape[1]
+    row_spans(active, na, WN, WT, span)
     nh = 0
     for a in range(na):
         c = active[a]
@@ -102,16 +133,16 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, A_
     for i in range(na):
         ci = active[i]
         for j in range(na):
-            A[i, j] = rows_dot(WN, ci, column, j)
+            A[i, j] = span_dot(WN, ci, column, j, span, i)
         for h in range(nh):
-            A[i, na + h] = rows_dot(WN, ci, YT, active[hrow[h]])
+            A[i, na + h] = span_dot(WN, ci, YT, active[hrow[h]], span, i)
     for g in range(nh):
         cg = active[hrow[g]]
         r = na + g
         for j in range(na):
-            A[r, j] = rows_dot(WT, cg, column, j)
+            A[r, j] = span_dot(WT, cg, column, j, span, hrow[g])
         for h in range(nh):
-            A[r, na + h] = rows_dot(WT, cg, YT, active[hrow[h]])
+            A[r, na + h] = span_dot(WT, cg, YT, active[hrow[h]], span, hrow[g])
         A[r, na + nh + g] = 1.0
         r2 = na + nh + g
         A[r2, hrow[g]] = 2.0 * laws[cg, 0]
@@ -177,11 +208,12 @@ def free_dynamics(mass_matrix, h_vector, q, u, t, p, dyn):
         if not cholesky(dyn.M, dyn.L):
             dyn.M_factored[0, 0] = np.nan
             return False
+        envelope(dyn.L, dyn.profile)
         for i in range(dyn.M.shape[0]):
             for j in range(dyn.M.shape[1]):
                 dyn.M_factored[i, j] = dyn.M[i, j]
     h_vector(q, u, t, p, dyn.hv)
-    cholesky_solve(dyn.L, dyn.hv, dyn.minv_h)
+    cholesky_solve(dyn.L, dyn.profile, dyn.hv, dyn.minv_h)
     return True
 
 
@@ -198,8 +230,8 @@ def _factorised(M, M_factored):
 @jit(inline="always")
 def contact_directions(rows, dyn, index, count):
     """M^-1 W_N and M^-1 W_T of the contacts index[:count] (after :func:`free_dynamics`)."""
-    inverse_mass_rows(dyn.L, rows.WN, index, count, dyn.YN)
-    inverse_mass_rows(dyn.L, rows.WT, index, count, dyn.YT)
+    inverse_mass_rows(dyn.L, dyn.profile, rows.WN, index, count, dyn.YN)
+    inverse_mass_rows(dyn.L, dyn.profile, rows.WT, index, count, dyn.YT)
 
 
 @jit(inline="always")
@@ -213,21 +245,51 @@ def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, index, count):
 
 
 @jit(refcount=False)
-def solve(m, pb, settings, tol_lex, events, t):
-    """Solve the LCP of size m held in pb.A_flat/pb.bvec; log failures; return True when solved."""
+def solve(m, na, nh, family, vertex, edge, pb, settings, tol_lex, events, t):
+    """Solve the LCP of size m = na + 2 nh over the contacts pb.active[:na] held in
+    pb.A_flat/pb.bvec; log failures; return True when solved.
+
+    For the impact LCPs (family COMPRESSION or EXPANSION) the contact states remembered from the
+    last LCP of the same family (contacts matched by vertex and edge) are tried first
+    (mbds.kernel.active_set, at most STATE_ROUNDS rounds of state changes); a point that does
+    not pass Lemke's solution check is discarded and the problem is solved by lexicographic
+    Lemke. The states of the solution are remembered for the next LCP of the family. The
+    contact-force LCPs (LEMKE_ONLY) go to Lemke directly: a body resting on an unstable
+    equilibrium (a polygon on a vertex) keeps its symmetry to round-off with Lemke's answer, and
+    drifted from it with the linear solve (tests/physics/test_impacts.py, the ball that must not
+    spin); a step's forces also cost less than its impacts."""
     if m == 0:
         return True
     A = pb.A_flat[: m * m].reshape((m, m))
-    status, pivots = lemke(A, pb.bvec[:m], pb.z[:m], pb.w[:m], settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
-                           int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
-    if status == SOLVED:
-        return True
-    log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
+    q, z, w = pb.bvec[:m], pb.z[:m], pb.w[:m]
+    memory = pb.memory[max(family, 0)]
+    solved = False
+    if family >= 0 and _negative(q):  # (else z = 0: Lemke answers without a pivot)
+        recall_states(pb.active, na, vertex, edge, memory, pb.memory_count[family], q, pb.state)
+        solved = solve_states(A, q, z, w, na, nh, pb.hrow, pb.state, STATE_ROUNDS, settings[PIVOT_MAX], tol_lex,
+                              int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+    if not solved:
+        status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
+                               int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+        if status != SOLVED:
+            log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
+            return False
+    if family >= 0:
+        pb.memory_count[family] = remember_states(pb.active, na, nh, pb.hrow, vertex, edge, z, w, memory)
+    return True
+
+
+@jit(inline="always")
+def _negative(q):
+    """Whether an entry of q is negative (or NaN)."""
+    for v in q:
+        if not v >= 0.0:
+            return True
     return False
 
 
 @jit(refcount=False)
-def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active and the accelerations
     acc = M^-1 (h + W lambda)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
@@ -237,7 +299,7 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
             acc[k] = dyn.minv_h[k]
         return True
     nh = build_matrix(active, na, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
-                      pb.A_flat)
+                      pb.span, pb.A_flat)
     m = na + 2 * nh
     for a in range(na):
         pb.bvec[a] = row_dot(rows.WN, active[a], dyn.minv_h) + rows.wbar_n[active[a]]
@@ -248,7 +310,7 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
         pb.bvec[na + g] = (row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
                            + rows.gd_t[c] / (STICK_RELAXATION * settings[DT_MAX]))
         pb.bvec[na + nh + g] = 0.0
-    ok = solve(m, pb, settings, tol_lex, events, t)
+    ok = solve(m, na, nh, LEMKE_ONLY, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t)
     for a in range(na):
         lam_n[active[a]] = 0.0
         lam_t[active[a]] = 0.0
@@ -264,16 +326,16 @@ def accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, event
 
 
 @jit(refcount=False)
-def contact_forces(nc, gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """The contacts at rest (closed, not separating faster than the rest velocity), their forces
     and the accelerations; returns (number of contacts at rest, solved)."""
     rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
     na = 0
     for i in range(nc):
-        if gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] <= rest:
+        if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] <= rest:
             pb.active[na] = i
             na += 1
             pb.stick[i] = abs(rows.gd_t[i]) <= STICK_FRACTION * rest
             pb.sign[i] = 1.0 if rows.gd_t[i] > 0.0 else -1.0
-    ok = accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
+    ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
     return na, ok

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 from mbds.kernel.contact_problem import (
     CLOSED_FRACTION,
+    COMPRESSION,
+    EXPANSION,
     build_matrix,
     row_dot,
-    rows_dot,
     solve,
+    span_dot,
     tangential_forces,
 )
 from mbds.kernel.jit import jit
@@ -37,14 +39,14 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
             pb.sign[i] = 0.0
             gam_n[i] = gd_n[i]  # gamma_A
             gam_t[i] = gd_t[i]
-    nh = build_matrix(active, na, pb.stick, pb.sign, laws, WN, WT, YN, YT, pb.column, pb.hrow, pb.A_flat)
+    nh = build_matrix(active, na, pb.stick, pb.sign, laws, WN, WT, YN, YT, pb.column, pb.hrow, pb.span, pb.A_flat)
     m = na + 2 * nh
     for a in range(na):  # compression: b = (gamma_NA, gamma_TA, 0)
         c = active[a]
         bvec[a] = gd_n[c]
         bvec[na + a] = gd_t[c]
         bvec[2 * na + a] = 0.0
-    if not solve(m, pb, settings, tol_lex, events, t):
+    if not solve(m, na, nh, COMPRESSION, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t):
         return False
     tangential_forces(active, na, pb.stick, pb.sign, laws, z, imp_n, imp_t)
     _apply_impulses(active, na, imp_n, imp_t, YN, YT, u)
@@ -61,12 +63,12 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
         st = gd_t[c]
         for b in range(na):
             e = active[b]
-            sn += rows_dot(WN, c, YN, e) * lam_ne[e] + rows_dot(WN, c, YT, e) * lam_te[e]
-            st += rows_dot(WT, c, YN, e) * lam_ne[e] + rows_dot(WT, c, YT, e) * lam_te[e]
+            sn += span_dot(WN, c, YN, e, pb.span, a) * lam_ne[e] + span_dot(WN, c, YT, e, pb.span, a) * lam_te[e]
+            st += span_dot(WT, c, YN, e, pb.span, a) * lam_ne[e] + span_dot(WT, c, YT, e, pb.span, a) * lam_te[e]
         bvec[a] = sn
         bvec[na + a] = st
         bvec[2 * na + a] = 2.0 * laws[c, 0] * lam_ne[c]
-    expanded = solve(m, pb, settings, tol_lex, events, t)
+    expanded = solve(m, na, nh, EXPANSION, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t)
     for a in range(na):
         c = active[a]
         if expanded:

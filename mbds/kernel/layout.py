@@ -60,12 +60,17 @@ Rows = namedtuple("Rows", "WN WT what_n what_t wbar_n wbar_t gd_n gd_t laws law_
 """Contact rows: W_N, W_T, the velocity and acceleration terms, relative velocities (m/s) and
 the law of each contact (mu, eN, eT, nu); law_out: scratch for one law evaluation."""
 
-Dynamics = namedtuple("Dynamics", "M L M_factored hv minv_h YN YT")
-"""Mass matrix, its Cholesky factor and the matrix L was factorised from (NaN: none yet), h,
-M^-1 h and M^-1 W_N, M^-1 W_T of the contacts."""
+Dynamics = namedtuple("Dynamics", "M L profile M_factored hv minv_h YN YT")
+"""Mass matrix, its Cholesky factor, the factor's nonzero envelope (mbds.kernel.linalg.envelope)
+and the matrix L was factorised from (NaN: none yet), h, M^-1 h and M^-1 W_N, M^-1 W_T of the
+contacts."""
 
-Problem = namedtuple("Problem", "column hrow active stick sign A_flat bvec z w fwork iwork")
-"""An LCP being set up and solved: contact set (active, stick, sign), matrix, vectors, scratch."""
+Problem = namedtuple(
+    "Problem", "column hrow span active stick sign A_flat bvec z w state memory memory_count fwork iwork",
+)
+"""An LCP being set up and solved: contact set (active, stick, sign), matrix, vectors, the
+contact states (mbds.kernel.active_set) being tried and those remembered for the 2 impact LCPs
+(rows: vertex, edge, state), scratch."""
 
 Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t compression_loss a1 a2 q_star u_star")
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
@@ -110,9 +115,11 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
         np.arange(c, dtype=i),
     )
     rows = Rows(f((c, n)), f((c, n)), f(c), f(c), f(c), f(c), f(c), f(c), f((c, 4)), f(4))
-    dynamics = Dynamics(f((n, n)), f((n, n)), np.full((n, n), np.nan), f(n), f(n), f((c, n)), f((c, n)))
+    dynamics = Dynamics(f((n, n)), f((n, n)), f((2, n), i), np.full((n, n), np.nan), f(n), f(n), f((c, n)),
+                        f((c, n)))
     problem = Problem(
-        f((c, n)), f(c, i), f(c, i), f(c, np.bool_), f(c), f(size * size), f(size), f(size), f(size), fwork, iwork,
+        f((c, n)), f(c, i), f((c, 2), i), f(c, i), f(c, np.bool_), f(c), f(size * size), f(size), f(size), f(size),
+        f(c, i), f((2, c, 3), i), f(2, i), fwork, iwork,
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     s = ROLLBACK_SLOTS

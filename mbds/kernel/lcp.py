@@ -302,14 +302,25 @@ def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
     for i in range(n):
         z[i] = 0.0
     nz = 0
-    znorm = 0.0
     for i in range(n):
         b = basis[i]
         if n <= b < 2 * n:
             z[b - n] = qbar[i] if qbar[i] > 0.0 else 0.0
             zlist[nz] = b - n
             nz += 1
-            znorm = max(znorm, z[b - n])
+    if check_solution(M, q, tol_lex, z, w, zlist, nz, msum) == 0:
+        return SOLVED
+    return PIVOT_FAILURE if status == SOLVED else status
+
+
+@jit(refcount=False)
+def check_solution(M, q, tol_lex, z, w, zlist, nz, msum):
+    """w = M z + q for z >= 0 with nonzeros only at zlist[:nz]; return the number of rows that
+    fail the solution check of the module doc (0: z, w solve the LCP). msum: (n,) scratch."""
+    n = q.shape[0]
+    znorm = 0.0
+    for a in range(nz):
+        znorm = max(znorm, z[zlist[a]])
     qnorm = _absmax(q)
     for i in range(n):
         w[i] = q[i]
@@ -319,11 +330,9 @@ def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
         for i in range(n):
             w[i] += M[i, j] * z[j]
             msum[i] += abs(M[i, j])
-    ok = True
+    failed = 0
     for i in range(n):
         zi = z[i] / znorm if znorm > 0.0 else 0.0
         if not abs(min(zi, w[i] / (qnorm + znorm * msum[i]))) <= tol_lex:
-            ok = False
-    if ok:
-        return SOLVED
-    return PIVOT_FAILURE if status == SOLVED else status
+            failed += 1
+    return failed

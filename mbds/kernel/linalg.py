@@ -33,67 +33,120 @@ def cholesky(A, L):
 
 
 @jit(refcount=False)
-def cholesky_solve(L, b, x):
-    """x = A^-1 b for A = L L^T (b and x (n,); they may be the same array)."""
+def envelope(L, profile):
+    """The nonzero envelope of a lower-triangular L (n, n) into profile (2, n) int64: profile[0, r]
+    the first nonzero column of row r, profile[1, r] the last nonzero row of column r (for a
+    block-diagonal M, e.g. free bodies, L is block-diagonal and the solves below skip the zeros
+    between the blocks)."""
+    n = L.shape[0]
+    for r in range(n):
+        first = r
+        for k in range(r):
+            if L[r, k] != 0.0:
+                first = k
+                break
+        profile[0, r] = first
+        last = r
+        for k in range(n - 1, r, -1):
+            if L[k, r] != 0.0:
+                last = k
+                break
+        profile[1, r] = last
+
+
+@jit(refcount=False)
+def cholesky_solve(L, profile, b, x):
+    """x = A^-1 b for A = L L^T (b and x (n,); they may be the same array); profile: the
+    envelope of L (:func:`envelope`). Only products with entries of L outside the envelope,
+    which are exact zeros, are left out: the result equals that of the full loops."""
     n = L.shape[0]
     for i in range(n):
         s = b[i]
-        for k in range(i):
+        for k in range(profile[0, i], i):
             s -= L[i, k] * x[k]
         x[i] = s / L[i, i]
     for i in range(n - 1, -1, -1):
         s = x[i]
-        for k in range(i + 1, n):
+        for k in range(i + 1, profile[1, i] + 1):
             s -= L[k, i] * x[k]
         x[i] = s / L[i, i]
 
 
 @jit(inline="always")
-def cholesky_solve_row(L, B, i, X):
-    """X[i] = A^-1 B[i] for A = L L^T (rows i of B and X, without array views)."""
+def cholesky_solve_row(L, profile, B, i, X):
+    """X[i] = A^-1 B[i] for A = L L^T (rows i of B and X, without array views); profile: the
+    envelope of L (:func:`envelope`).
+
+    The leading zeros of B[i], the trailing zeros of the forward solution and the entries of L
+    outside its envelope are skipped (a contact row touches the coordinates of two bodies only);
+    the terms left out are products with exact zeros, so the result equals that of the full
+    loops."""
     n = L.shape[0]
-    for r in range(n):
+    first = 0
+    while first < n and B[i, first] == 0.0:
+        X[i, first] = 0.0
+        first += 1
+    last = -1
+    for r in range(first, n):
         s = B[i, r]
-        for k in range(r):
+        for k in range(max(first, profile[0, r]), r):
             s -= L[r, k] * X[i, k]
         X[i, r] = s / L[r, r]
-    for r in range(n - 1, -1, -1):
+        if X[i, r] != 0.0:
+            last = r
+    for r in range(n - 1, last, -1):
+        X[i, r] = 0.0
+    for r in range(last, -1, -1):
         s = X[i, r]
-        for k in range(r + 1, n):
+        for k in range(r + 1, min(last, profile[1, r]) + 1):
             s -= L[k, r] * X[i, k]
         X[i, r] = s / L[r, r]
+
+
+@jit(refcount=False)
+def gauss_solve(A, x, k, tol_piv):
+    """x[:k] <- A^-1 x[:k] for A (k, k) by Gaussian elimination with partial pivoting (A is
+    overwritten); False when a pivot is not above tol_piv * max|A| (A singular within that
+    tolerance) or anything is not finite."""
+    amax = 0.0
+    for a in range(k):
+        for b in range(k):
+            amax = max(amax, abs(A[a, b]))
+    if not amax < np.inf:
+        return False
+    for c in range(k):
+        p = c
+        for r in range(c + 1, k):
+            if abs(A[r, c]) > abs(A[p, c]):
+                p = r
+        if not abs(A[p, c]) > tol_piv * amax:
+            return False
+        if p != c:
+            for b in range(c, k):
+                A[c, b], A[p, b] = A[p, b], A[c, b]
+            x[c], x[p] = x[p], x[c]
+        for r in range(c + 1, k):
+            f = A[r, c] / A[c, c]
+            if f != 0.0:
+                for b in range(c + 1, k):
+                    A[r, b] -= f * A[c, b]
+                x[r] -= f * x[c]
+    for r in range(k - 1, -1, -1):
+        s = x[r]
+        for b in range(r + 1, k):
+            s -= A[r, b] * x[b]
+        x[r] = s / A[r, r]
+        if not np.isfinite(x[r]):
+            return False
+    return True
 
 
 @jit
 def lu_solve(A, b):
     """x = A^-1 b by Gaussian elimination with partial pivoting (A (n, n) and b (n,) are not
-    changed).  Returns (x, ok); ok is False when a pivot is zero or not finite (A singular)."""
-    n = A.shape[0]
-    M = A.copy()
+    changed).  Returns (x, ok); ok is False when a pivot is zero or anything is not finite."""
     x = b.copy()
-    for k in range(n):
-        pivot = k
-        for i in range(k + 1, n):
-            if abs(M[i, k]) > abs(M[pivot, k]):
-                pivot = i
-        if not (abs(M[pivot, k]) > 0.0 and np.isfinite(M[pivot, k])):
-            return x, False
-        if pivot != k:
-            for j in range(k, n):
-                M[k, j], M[pivot, j] = M[pivot, j], M[k, j]
-            x[k], x[pivot] = x[pivot], x[k]
-        for i in range(k + 1, n):
-            factor = M[i, k] / M[k, k]
-            if factor != 0.0:
-                for j in range(k + 1, n):
-                    M[i, j] -= factor * M[k, j]
-                x[i] -= factor * x[k]
-    for i in range(n - 1, -1, -1):
-        s = x[i]
-        for j in range(i + 1, n):
-            s -= M[i, j] * x[j]
-        x[i] = s / M[i, i]
-    return x, True
+    return x, gauss_solve(A.copy(), x, A.shape[0], 0.0)
 
 
 @jit

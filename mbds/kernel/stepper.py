@@ -166,7 +166,7 @@ def advance(
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
                 contact_directions(rows, dyn, contacts.order, nc)
-                contact_forces(nc, contacts.gap, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
+                contact_forces(nc, contacts, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
                    model.watch_points, history)
@@ -205,13 +205,14 @@ def advance(
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
                             point_loss, point_interval, back, events, t)
-            # everything that depends on the velocities, again at the post-impact state
+            # everything that depends on the velocities, again at the post-impact state (the
+            # positions did not change: M, the force directions and M^-1 W stay)
             _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
             _contact_rows(nc, contacts, model, bodies, rows)
             contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-            dynamics(mass_matrix, h_vector, q, u, t, model.p, rows, dyn, contacts.order, nc)
+            free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn)
         # --- 5: forces between impacts
-        na, forces_ok = contact_forces(nc, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
+        na, forces_ok = contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
                                        forces.lam_t1, a1, events, t)
         solved = solved and forces_ok
         if not solved:
@@ -300,7 +301,7 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
                          contacts.normal, contacts.point)
         _contact_kinematics(active, na, contacts, model, bodies, rows)
     end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, active, na)
-    end_ok = end_ok and accelerations(na, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
+    end_ok = end_ok and accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
     if not end_ok:
         for k in range(n):
             a2[k] = a1[k]
