@@ -109,7 +109,7 @@ def test_a_warm_cache_warms_up_without_sympy_or_numba(tmp_path, cache):
     job = two_mass(tmp_path, TWO_VARIANTS)
     assert warm_up_first(expand(job)).count == 1  # remembers and marks
     code = ("import sys\nfrom mbds.campaign.plan import expand\nfrom mbds.campaign.run import warm_up_first\n"
-            f"print(warm_up_first(expand(sys.argv[1])).count, "
+            "print(warm_up_first(expand(sys.argv[1])).count, "
             "' '.join(m for m in ('sympy', 'numba') if m in sys.modules) or '-')")
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     done = subprocess.run([sys.executable, "-c", code, str(job)], capture_output=True, text=True, env=env, check=True)
