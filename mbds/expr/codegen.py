@@ -21,19 +21,17 @@ model's structure alone and its hash names the cached module.
 
 from __future__ import annotations
 
-import functools
-import hashlib
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import sympy
 
-from mbds import kernel
 from mbds._version import __version__
 from mbds.expr import cache
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter
+from mbds.kernel.jit import kernel_source_hash
 
 __all__ = ["CompiledModel", "DependentCoordinate", "ModelExpressions", "compile_model", "generate_source"]
 
@@ -176,16 +174,6 @@ def _driver() -> str:
             "                    history, events, ws)",
         ]
     )
-
-
-@functools.cache
-def kernel_source_hash() -> str:
-    """Hash of the source files of mbds.kernel (the code a model's stepper is compiled from)."""
-    digest = hashlib.sha256()
-    for path in sorted(Path(kernel.__file__).parent.glob("*.py")):
-        digest.update(path.name.encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()[:20]
 
 
 def _comment_text(name: str) -> str:

@@ -28,8 +28,9 @@ import sympy
 
 from mbds._version import __version__
 from mbds.expr import cache
-from mbds.expr.codegen import _assign, kernel_source_hash
+from mbds.expr.codegen import _assign
 from mbds.expr.printer import NumbaPrinter
+from mbds.kernel.jit import kernel_source_hash
 
 
 @dataclass(frozen=True)
