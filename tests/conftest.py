@@ -1,15 +1,16 @@
-"""Test-session settings: one disk cache of compiled models shared by every test.
+"""Test-session settings: the tests share the compiled-model cache that mbds itself uses.
 
-Compiled model modules go to ``.mbds-cache/tests`` in the repository (ignored by git) unless
-``MBDS_CACHE_DIR`` is set: tests never write to the user's own cache, and a model compiled by
-one test is loaded from the cache by the others.
+Unless ``MBDS_CACHE_DIR`` is set, the tests compile into the user's default cache
+(mbds.expr.cache.default_cache_dir), the one README.md's set-up command has just filled with the
+example models: a model compiled there, or by one test, is loaded by the others instead of being
+compiled again. Entries are keyed by the hash of their generated source, so sharing is safe; tests
+that need a cache of their own set ``MBDS_CACHE_DIR`` themselves.
 """
 
 import os
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from mbds.expr.cache import default_cache_dir
 
 
 def pytest_configure(config):
-    os.environ.setdefault("MBDS_CACHE_DIR", str(ROOT / ".mbds-cache" / "tests"))
+    os.environ.setdefault("MBDS_CACHE_DIR", str(default_cache_dir()))
