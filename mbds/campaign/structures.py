@@ -18,7 +18,9 @@ numba; each worker loads the first variant's compiled model before its first tas
 
 from __future__ import annotations
 
+import tempfile
 import warnings
+from pathlib import Path
 
 from mbds.campaign import known_structures as known
 from mbds.campaign.plan import PREPARE, Plan
@@ -100,6 +102,24 @@ def load_first(world, variant) -> None:
     _run_for_no_time(model if model is not None else _assembled(files))
 
 
+def keep_record(files, variant) -> None:
+    """Keep the record of the model of ``files`` with ``variant``'s values written in
+    (:mod:`mbds.model.known`) in the cache unless it is there: as its chain's first run would,
+    from a copy of that model in a temporary folder."""
+    from mbds.campaign.variants import variant_files
+    from mbds.model.known import remembered
+    from mbds.simulation.versions import create_model_copy
+
+    changed, texts = (files, None) if variant is None else variant_files(files, variant)
+    if remembered(changed, texts) is not None:
+        return
+    with tempfile.TemporaryDirectory(prefix="mbds-record-") as temporary:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ModelWarning)
+            copy = create_model_copy(Path(temporary) / "000", changed, 0, texts)
+        _found(read_model_files(copy))
+
+
 def _name(variant) -> str | None:
     return variant.id if variant is not None else None
 
@@ -132,6 +152,10 @@ class Structures:
             _run_for_no_time(_assembled(_with_values(self._base, variant)))
         self._ready.add(key)
         return True
+
+    def keep_record(self, variant) -> None:
+        """Keep the record of ``variant``'s model in the cache (see :func:`keep_record`)."""
+        keep_record(self._base, variant)
 
     @property
     def count(self) -> int:

@@ -14,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from mbds.campaign.plan import expand
+from mbds.campaign.run import warm_up
 from mbds.campaign.tasks import run_task
 from mbds.expr.compiled import mark_compiled
 from mbds.io.folder import read_model_files
@@ -69,20 +70,26 @@ print(json.dumps({"results": results, "loaded": [m for m in ("sympy", "typer") i
 """
 
 
-def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_path, cache):  # noqa: F811
+def as_a_worker(plan, cache: Path, tmp_path: Path) -> dict:
+    """The results of ``plan``'s tasks run in order by a fresh process as a worker rank runs
+    them, and which of sympy and typer it imported."""
     import pickle
 
+    plan_file = tmp_path / "plan.pickle"
+    plan_file.write_bytes(pickle.dumps(plan))
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "MBDS_CACHE_DIR": str(cache)}
+    done = subprocess.run([sys.executable, "-c", WORKER, str(plan_file)], capture_output=True, text=True, env=env,
+                          check=True)
+    return json.loads(done.stdout.splitlines()[-1])
+
+
+def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_path, cache):  # noqa: F811
     first = two_mass(tmp_path / "first", None, jobs="000-001")
     results = {task.id: run_task(task) for task in expand(first).tasks}  # the records are kept here
     assert all(r["state"] == "done" for r in results.values()), results
     mark_compiled(load_model(first.parent / "000").compiled.source_hash)
     again = two_mass(tmp_path / "again", None, jobs="000-001")
-    plan_file = tmp_path / "plan.pickle"
-    plan_file.write_bytes(pickle.dumps(expand(again)))
-    env = {**os.environ, "PYTHONPATH": str(ROOT), "MBDS_CACHE_DIR": str(cache)}
-    done = subprocess.run([sys.executable, "-c", WORKER, str(plan_file)], capture_output=True, text=True, env=env,
-                          check=True)
-    worker = json.loads(done.stdout.splitlines()[-1])
+    worker = as_a_worker(expand(again), cache, tmp_path)
     assert [r["state"] for r in worker["results"]] == ["done"] * len(results)
     assert worker["loaded"] == [], f"a worker on a warm cache imported {worker['loaded']}"
     assert sum(r["compiled"] for r in worker["results"]) == 0
@@ -91,3 +98,14 @@ def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_pat
                 xr.open_dataset(again.parent / version / "history.nc") as theirs:
             for name in ("q", "qd", "qdd", "point_lost_work"):
                 assert ours[name].values.tobytes() == theirs[name].values.tobytes(), (version, name)
+
+
+def test_the_warm_up_of_all_variants_leaves_the_cache_as_a_campaign_run_before(tmp_path, cache):  # noqa: F811
+    """``warm_up(plan)`` keeps every variant's record: a campaign after it needs no sympy on its
+    workers, and its prepare tasks find the structures that its runs use."""
+    job = two_mass(tmp_path / "a", "c'gravity = 9.81, 5\ncontact.mass1-mass2.friction = 0.1, 0.3\n", jobs="000-000")
+    assert warm_up(expand(job)) == 1
+    plan = expand(job)
+    worker = as_a_worker(plan, cache, tmp_path)
+    assert {r["state"] for r in worker["results"]} == {"done"} and worker["loaded"] == []
+    assert sum(r["compiled"] for r in worker["results"]) == 0
