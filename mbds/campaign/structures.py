@@ -13,7 +13,9 @@ A cache that holds a structure compiled already is asked instead (:mod:`mbds.cam
 the structure of inputs seen before is remembered, and a structure compiled before is marked, so
 the scheduling process of a campaign whose models were compiled before imports neither sympy nor
 numba; each worker loads the first variant's compiled model before its first task
-(:func:`load_first`).
+(:func:`load_first`). A prepare task that has to find its structure keeps its chain's model
+record too, and :func:`keep_record` keeps a variant's, so that the runs (and ``load_first``)
+assemble their models without sympy (:mod:`mbds.model.known`).
 """
 
 from __future__ import annotations

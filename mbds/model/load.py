@@ -73,12 +73,8 @@ class Model:
         return self.source.name
 
     def compile(self, cache_dir: str | Path | None = None) -> CompiledModel:
-        """Compile (or load from the disk cache) the model's numba functions."""
-        if self.compiled is None and self.expressions is None:
-            self.compiled = cached_module(self.structure)
-            if self.compiled is None:
-                raise ModelError("its compiled code has left the cache since it was loaded: load it again",
-                                 self.world_path)
+        """Compile (or load from the disk cache) the model's numba functions (a model assembled
+        from the cache's record comes with them)."""
         if self.compiled is None:
             from mbds.expr.codegen import compile_model
 
