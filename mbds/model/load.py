@@ -83,17 +83,20 @@ class Model:
         return self.compiled
 
 
-def load_model(path: str | Path, *, version: int = 0, compile: bool = True, cache_dir=None) -> Model:
+def load_model(path: str | Path, *, version: int = 0, compile: bool = True, cache_dir=None,
+               from_record: bool = False) -> Model:
     """Read, check and assemble the model of a folder or ``.wld`` file; compile it unless told
-    not to. ``version`` selects the ``[body:k]`` watch sections. Raises :class:`ModelError`."""
-    return load_files(read_model_files(path), version, compile=compile, cache_dir=cache_dir)
+    not to. ``version`` selects the ``[body:k]`` watch sections. Compiled into the default
+    cache, its record is kept there (:mod:`mbds.model.known`); ``from_record``: assemble it from
+    that record when the cache holds one, without sympy (the model then has no ``expressions``
+    and no parameter names; what runs use). Raises :class:`ModelError`."""
+    return load_files(read_model_files(path), version, compile=compile, cache_dir=cache_dir, from_record=from_record)
 
 
-def load_files(files: ModelFiles, version: int = 0, *, compile: bool = True, cache_dir=None) -> Model:
-    """:func:`load_model` of model files already read. Compiled into the default cache, it is
-    assembled from the cache's record of these files when there is one (and its compiled module
-    with it), and its record is kept otherwise."""
-    if compile and cache_dir is None:
+def load_files(files: ModelFiles, version: int = 0, *, compile: bool = True, cache_dir=None,
+               from_record: bool = False) -> Model:
+    """:func:`load_model` of model files already read."""
+    if from_record and compile and cache_dir is None:
         model = remembered_model(files, version)
         if model is not None:
             return model
