@@ -92,7 +92,9 @@ def _record_path(digest: str) -> Path:
 
 
 def remembered(files: ModelFiles, texts: dict[str, str] | None = None) -> Record | None:
-    """The record of the model of ``files`` (see :func:`model_digest`), if the cache holds one."""
+    """The record of the model of ``files`` (see :func:`model_digest`), if the cache holds one
+    (ModelError when the cache is not private, as for its modules)."""
+    cache.check_private(cache.default_cache_dir())
     try:
         noted = json.loads(_record_path(model_digest(files, texts)).read_text(encoding="utf-8"))
         record = Record(**{name: tuple(value) if isinstance(value, list) else value for name, value in noted.items()})

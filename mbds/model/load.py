@@ -169,8 +169,10 @@ def remembered_model(files: ModelFiles, version: int = 0, texts: dict[str, str] 
         return None
     bodies = assemble_bodies(files)
     pairs, laws = assemble_contacts(files, bodies)
-    known.issue(remembered.warnings)
     values = np.array([*known.base_parameters(files, bodies), *remembered.law_numbers], dtype=float)
+    if len(values) != compiled.n_parameters or len(remembered.q0) != compiled.n:
+        return None
+    known.issue(remembered.warnings)
     model = _model(files, version, bodies, pairs, laws, None, Parameters([], values, len(files.constants.values)),
                    (np.array(remembered.q0), np.array(remembered.qd0)), remembered.break_time)
     model.compiled, model.structure = compiled, remembered.structure
