@@ -63,8 +63,10 @@ def campaign_cache(plan: Plan, private: bool = False) -> None:
 
 def warm_up(plan: Plan) -> int:
     """Compile (or load from the cache) each distinct model structure of the campaign's variants
-    and run its stepper for no time; the number of distinct structures. (Its imports are made
-    here: rank 0 alone warms up, and a worker importing this module does not load sympy.)"""
+    and run its stepper for no time, and keep each variant's model record in the cache
+    (:mod:`mbds.model.known`), as a campaign run before would leave it; the number of distinct
+    structures. (Its imports are made here: rank 0 alone warms up, and a worker importing this
+    module does not load sympy.)"""
     if plan.model == DAP_BC:
         from mbds.campaign.dapbc_plan import warm_up_dapbc
 
@@ -72,6 +74,7 @@ def warm_up(plan: Plan) -> int:
     structures = Structures(plan)
     for variant in plan.variants or [None]:
         structures.make_ready(variant)
+        structures.keep_record(variant)
     return structures.count
 
 

@@ -13,28 +13,43 @@ A cache that holds a structure compiled already is asked instead (:mod:`mbds.cam
 the structure of inputs seen before is remembered, and a structure compiled before is marked, so
 the scheduling process of a campaign whose models were compiled before imports neither sympy nor
 numba; each worker loads the first variant's compiled model before its first task
-(:func:`load_first`).
+(:func:`load_first`). A prepare task that has to find its structure keeps its chain's model
+record too, and :func:`keep_record` keeps a variant's, so that the runs (and ``load_first``)
+assemble their models without sympy (:mod:`mbds.model.known`).
 """
 
 from __future__ import annotations
 
+import tempfile
 import warnings
+from pathlib import Path
 
 from mbds.campaign import known_structures as known
 from mbds.campaign.plan import PREPARE, Plan
 from mbds.errors import ModelWarning
+from mbds.io.folder import read_model_files
 
 
-def structure(files, variant=None) -> str:
+def structure(files, variant=None, copy=None) -> str:
     """The structure key of the model of ``files`` (a folder's model files, as read) with
     ``variant``'s values written in: remembered by the cache for these inputs, else found by
-    code generation and remembered."""
+    code generation and remembered. ``copy``: a folder holding that model (the chain's version
+    000), whose record the cache then keeps too (:mod:`mbds.model.known`)."""
     digest = known.input_digest(files, variant)
     key = known.remembered(digest)
     if key is None:
-        key = _key(_assembled(_with_values(files, variant)))
+        key = _found(read_model_files(copy)) if copy is not None else _key(_assembled(_with_values(files, variant)))
         known.remember(digest, key)
     return key
+
+
+def _found(files) -> str:
+    """The structure of the model of ``files`` (read from a folder), its record kept."""
+    from mbds.model.load import find_structure
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        return find_structure(files)
 
 
 def _with_values(files, variant):
@@ -75,10 +90,36 @@ def _run_for_no_time(model) -> None:
 
 def load_first(world, variant) -> None:
     """Load the compiled model of ``variant`` of the model of ``world`` in this process (a
-    worker, before its first task) and run its stepper for no time."""
-    from mbds.io.folder import read_model_files
+    worker, before its first task) and run its stepper for no time: without sympy when the
+    cache holds the record of the chain's first version (:mod:`mbds.model.known`)."""
+    from mbds.campaign.variants import variant_files
+    from mbds.model.load import remembered_model
 
-    _run_for_no_time(_assembled(_with_values(read_model_files(world), variant)))
+    files, texts = read_model_files(world), None
+    if variant is not None:
+        files, texts = variant_files(files, variant)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ModelWarning)
+        model = remembered_model(files, 0, texts)
+    _run_for_no_time(model if model is not None else _assembled(files))
+
+
+def keep_record(files, variant) -> None:
+    """Keep the record of the model of ``files`` with ``variant``'s values written in
+    (:mod:`mbds.model.known`) in the cache unless it is there: as its chain's first run would,
+    from a copy of that model in a temporary folder."""
+    from mbds.campaign.variants import variant_files
+    from mbds.model.known import remembered
+    from mbds.simulation.versions import create_model_copy
+
+    changed, texts = (files, None) if variant is None else variant_files(files, variant)
+    if remembered(changed, texts) is not None:
+        return
+    with tempfile.TemporaryDirectory(prefix="mbds-record-") as temporary:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ModelWarning)
+            copy = create_model_copy(Path(temporary) / "000", changed, 0, texts)
+        _found(read_model_files(copy))
 
 
 def _name(variant) -> str | None:
@@ -89,8 +130,6 @@ class Structures:
     """The structures made ready in this process, and each variant's structure as far as known."""
 
     def __init__(self, plan: Plan):
-        from mbds.io.folder import read_model_files
-
         self._base = read_model_files(plan.job.world_path())
         self._variant_of = {task.id: _name(task.variant) for task in plan.tasks if task.kind == PREPARE}
         self._ready: set[str] = set()
@@ -115,6 +154,10 @@ class Structures:
             _run_for_no_time(_assembled(_with_values(self._base, variant)))
         self._ready.add(key)
         return True
+
+    def keep_record(self, variant) -> None:
+        """Keep the record of ``variant``'s model in the cache (see :func:`keep_record`)."""
+        keep_record(self._base, variant)
 
     @property
     def count(self) -> int:

@@ -119,7 +119,7 @@ def _prepare(task: Task, stop: Callable[[], bool] | None = None) -> dict:
         changed, texts = variant_files(files, task.variant)
         create_model_copy(task.folder, changed, 0, texts)
         version = ensure_version(task.folder, 0)
-    return {"state": DONE, "output": str(version), "structure": structure(files, task.variant)}
+    return {"state": DONE, "output": str(version), "structure": structure(files, task.variant, version)}
 
 
 @register_task_kind(RUN, SIMULATION)

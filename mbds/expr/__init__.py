@@ -15,7 +15,8 @@ __all__ = [
     "generate_source",
     "parse_expression",
 ]
-_LAZY = {name: "mbds.expr.codegen" for name in __all__[:-1]} | {"parse_expression": "mbds.expr.parse"}
+_LAZY = {name: "mbds.expr.codegen" for name in __all__[:-1]} | {"parse_expression": "mbds.expr.parse",
+                                                                 "CompiledModel": "mbds.expr.compiled"}
 
 
 def __getattr__(name: str):

@@ -13,7 +13,9 @@ says what to fix.
 
 from __future__ import annotations
 
+import functools
 import hashlib
+import importlib.metadata
 import importlib.util
 import os
 import sys
@@ -21,6 +23,7 @@ import tempfile
 from pathlib import Path
 from types import ModuleType
 
+from mbds._version import __version__
 from mbds.errors import ModelError
 
 PREFIX = "mbds_model_"
@@ -113,3 +116,28 @@ def load(path: Path) -> ModuleType:
         del sys.modules[name]
         raise
     return module
+
+
+@functools.cache
+def code_digest() -> str:
+    """sha256 of the versions of mbds, sympy (which writes the code) and Python, and of every
+    source file of the package (names and bytes): what any input digest of the cache starts from."""
+    package = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256(f"{__version__} {importlib.metadata.version('sympy')} {sys.version}".encode())
+    for path in sorted(package.rglob("*.py")):
+        digest.update(str(path.relative_to(package)).encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def write_private(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically, in a folder of the private cache (the default one)."""
+    path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
+    check_private(default_cache_dir())
+    descriptor, temporary = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    try:
+        with os.fdopen(descriptor, "w") as file:
+            file.write(text)
+        os.replace(temporary, path)
+    finally:
+        Path(temporary).unlink(missing_ok=True)

@@ -21,14 +21,14 @@ model's structure alone and its hash names the cached module.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from collections.abc import Iterator
 from pathlib import Path
 
 import sympy
 
 from mbds._version import __version__
 from mbds.expr import cache
+from mbds.expr.compiled import GENERATED_FUNCTIONS, CompiledModel, load_compiled
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter
 from mbds.kernel.jit import kernel_source_hash
@@ -61,30 +61,6 @@ _DOCS = {
     "mechanical_energy": "Mechanical energy (J).",
     "contact_law": "Friction, restitutionNormal, restitutionTangent, parameterNi of property set k into out[4].",
 }
-GENERATED_FUNCTIONS = tuple(SIGNATURES)
-
-
-@dataclass(frozen=True)
-class CompiledModel:
-    """The compiled functions of one model (see the module documentation for their signatures)."""
-
-    mass_matrix: Callable
-    h_vector: Callable
-    dependent_state: Callable
-    dependent_jacobian: Callable
-    mechanical_energy: Callable
-    contact_law: Callable
-    advance: Callable  # the time stepper bound to these functions (compiled on first call)
-    n: int  # generalized coordinates
-    m: int  # dependent coordinates
-    n_contact_laws: int
-    n_parameters: int  # length of p
-    source_path: Path
-    source_hash: str
-
-    def dispatchers(self) -> dict[str, Callable]:
-        """The six numba dispatchers by name."""
-        return {name: getattr(self, name) for name in GENERATED_FUNCTIONS}
 
 
 def compile_model(expressions: ModelExpressions, cache_dir: Path | None = None) -> CompiledModel:
@@ -97,17 +73,7 @@ def compile_model(expressions: ModelExpressions, cache_dir: Path | None = None) 
     """
     source = generate_source(expressions)
     path = cache.store(source, Path(cache_dir) if cache_dir is not None else cache.default_cache_dir())
-    module = cache.load(path)
-    return CompiledModel(
-        **{name: getattr(module, name) for name in GENERATED_FUNCTIONS},
-        advance=module.advance,
-        n=module.N,
-        m=module.M,
-        n_contact_laws=module.CONTACT_LAWS,
-        n_parameters=module.PARAMETERS,
-        source_path=path,
-        source_hash=cache.source_hash(source),
-    )
+    return load_compiled(path, cache.source_hash(source))
 
 
 def generate_source(expressions: ModelExpressions) -> str:

@@ -6,15 +6,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import sympy
 
 from mbds.errors import ModelError
-from mbds.expr import symbols as S
-from mbds.expr.model import code_vector, resolve
 from mbds.io.contacts import LAW_RULES, ContactLaw
 from mbds.io.folder import ModelFiles
 from mbds.io.ini import Located
-from mbds.model.equations import ExpressionReader
 
 SYMMETRY_TOLERANCE = 1e-9
 """Largest |M - Mᵀ| accepted, relative to the largest |M| entry."""
@@ -23,6 +19,11 @@ SYMMETRY_TOLERANCE = 1e-9
 def check_mass_matrix(expressions, parameters, q0: np.ndarray, path) -> None:
     """The mass matrix at the start coordinates ``q0`` (t = 0) is symmetric positive definite;
     ModelError naming the ``.mmx`` file with its eigenvalues otherwise."""
+    import sympy
+
+    from mbds.expr import symbols as S
+    from mbds.expr.model import code_vector, resolve
+
     n = len(q0)
     if n == 0:
         return
@@ -34,6 +35,22 @@ def check_mass_matrix(expressions, parameters, q0: np.ndarray, path) -> None:
         matrix = np.array([[float(e.xreplace(values)) for e in row] for row in resolved.mass_matrix])
     except (TypeError, ValueError):
         raise ModelError("the mass matrix is not a real number at the start state", path) from None
+    check_matrix_at_start(matrix, q0, path)
+
+
+def check_compiled_mass_matrix(compiled, parameters: np.ndarray, q0: np.ndarray, path) -> None:
+    """:func:`check_mass_matrix` with the mass matrix of the compiled model (float64 arithmetic
+    instead of sympy's), for a model assembled from the cache's record (:mod:`mbds.model.known`)."""
+    if len(q0) == 0:
+        return
+    matrix = np.empty((len(q0), len(q0)))
+    compiled.mass_matrix(np.ascontiguousarray(q0, dtype=float), 0.0, parameters, matrix)
+    check_matrix_at_start(matrix, q0, path)
+
+
+def check_matrix_at_start(matrix: np.ndarray, q0: np.ndarray, path) -> None:
+    """The mass matrix ``matrix`` at the start coordinates ``q0`` is finite, symmetric and
+    positive definite; ModelError naming ``path`` with its eigenvalues otherwise."""
     where = f"at the start state (q = {np.array2string(q0, precision=6)})"
     if not np.all(np.isfinite(matrix)):
         raise ModelError(f"the mass matrix is not finite {where}", path)
@@ -48,6 +65,9 @@ def check_mass_matrix(expressions, parameters, q0: np.ndarray, path) -> None:
 
 def law_value(item: Located, files: ModelFiles, temperature: float, path) -> float:
     """The value of a contact-law expression at ``temp = temperature``, ``vRel = 0``."""
+    from mbds.expr import symbols as S
+    from mbds.model.equations import ExpressionReader
+
     expr = ExpressionReader(files, []).read(item, path, contact=True)
     values = {S.constant(name): v for name, v in files.constants.values.items()}
     values.update({S.TEMP: temperature, S.VREL: 0.0})

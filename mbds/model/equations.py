@@ -10,7 +10,6 @@ laws (see :func:`lift_law_numbers`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -25,15 +24,8 @@ from mbds.io.coordinates import CoordinateName
 from mbds.io.folder import ModelFiles
 from mbds.io.ini import Located
 from mbds.model.bodies import FIXED, POSE, Body
-
-
-@dataclass
-class Parameters:
-    """Names and values of the parameter array ``p`` (constants, masses, fixed coordinates)."""
-
-    symbols: list[sympy.Symbol]
-    values: np.ndarray
-    constant_count: int
+from mbds.model.known import base_parameters
+from mbds.model.system import Parameters
 
 
 def coordinate_symbol(name: CoordinateName) -> sympy.Expr:
@@ -45,14 +37,10 @@ def coordinate_symbol(name: CoordinateName) -> sympy.Expr:
 
 def build_parameters(files: ModelFiles, bodies: list[Body]) -> tuple[Parameters, dict]:
     """The parameter array and the fixed-coordinate substitutions (coordinate -> p symbol)."""
-    names, values = [], []
-    for name, value in files.constants.values.items():
-        names.append(S.constant(name))
-        values.append(value)
+    names = [S.constant(name) for name in files.constants.values]
     for body in bodies:
         if not body.virtual:
             names += [S.mass_property(body.name, "m"), S.mass_property(body.name, "Jzz")]
-            values += [body.mass, body.inertia]
     fixed = {}
     for body in bodies:
         if body.virtual:
@@ -61,9 +49,9 @@ def build_parameters(files: ModelFiles, bodies: list[Body]) -> tuple[Parameters,
             if body.binding[axis] == FIXED:
                 symbol = sympy.Symbol(f"fixed`{body.name}`{coordinate}", real=True)
                 names.append(symbol)
-                values.append(body.start_position[axis])
                 fixed[S.body_coordinate(body.name, coordinate)] = symbol
-    return Parameters(names, np.array(values, dtype=float), len(files.constants.values)), fixed
+    values = np.array(base_parameters(files, bodies), dtype=float)
+    return Parameters(names, values, len(files.constants.values)), fixed
 
 
 _TOO_HIGH = {

@@ -7,6 +7,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 
 @dataclass(frozen=True)
 class SystemSource:
@@ -54,3 +56,14 @@ class WatchOptions:
     write_averaged_t_div_n: bool = False
     absolute_angle_instead_of_work: bool = False
     smooth_work_left_right: int = 0
+
+
+@dataclass
+class Parameters:
+    """Names (sympy symbols; empty for a model assembled from the cache's record,
+    :mod:`mbds.model.known`) and values of the parameter array ``p`` (constants, masses, fixed
+    coordinates, contact-law numbers), of which the first ``constant_count`` are the constants."""
+
+    symbols: list
+    values: np.ndarray
+    constant_count: int

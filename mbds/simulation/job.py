@@ -21,10 +21,10 @@ from mbds.data.history import FILE_NAME as HISTORY
 from mbds.data.history import read_attributes, read_point_losses
 from mbds.data.record import RunRecord
 from mbds.errors import ModelError, ModelWarning
-from mbds.io.folder import run_number, version_name, version_number
+from mbds.io.folder import version_name, version_number
 from mbds.io.job import JobFile, JobSettings, read_checked_job, version_exists
 from mbds.io.lock import folder_lock
-from mbds.model.load import load_model
+from mbds.model.load import model_break_time
 from mbds.simulation.run import RunStopped
 from mbds.simulation.version_run import Progress, RunOptions, run_version
 from mbds.simulation.versions import ensure_version
@@ -46,7 +46,7 @@ def incomplete(folder: str | Path) -> str:
     length = float(attrs["break_time"] - attrs["start_time"])
     with warnings.catch_warnings():  # the run of the version repeats any warning
         warnings.simplefilter("ignore", ModelWarning)
-        full = load_model(folder, version=run_number(folder) or 0, compile=False).break_time
+        full = model_break_time(folder)
     if not math.isclose(length, full, rel_tol=1e-9):
         return f"its run lasted {length:.9g} s, not the world file's breakTime of {full:.9g} s"
     return ""

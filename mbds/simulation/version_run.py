@@ -56,7 +56,7 @@ def run_version(folder: str | Path, options: RunOptions, progress: Progress | No
     number = run_number(folder)
     if number is None:
         raise ModelError("not a version folder (000, 001, ...) or a replicate folder in one (000/r0)", folder)
-    model = load_model(folder, version=number)
+    model = load_model(folder, version=number, from_record=True)
     job = options.job if options.job is not None else job_settings(folder.parent, model.world_path.stem)
     state, seed = _start_state(model, folder, options)
     start = copy.deepcopy(state)

@@ -22,7 +22,7 @@ from mbds.io.folder import (
 )
 from mbds.io.job import JobSettings, read_job
 from mbds.io.text import process_umask, write_atomic
-from mbds.model.load import assemble_model
+from mbds.model.load import check_model
 
 
 def existing_versions(model_folder: str | Path) -> list[int]:
@@ -57,7 +57,7 @@ def create_model_copy(target: str | Path, files: ModelFiles, number: int, texts:
         raise ModelError("a folder without a .wld world file is in the way", target)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ModelWarning)
-        assemble_model(files, number)  # bad input stops here, before anything is written
+        check_model(files, number, texts)  # bad input stops here, before anything is written
     target.parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
     try:

@@ -50,6 +50,16 @@ def test_workers_import_what_tasks_need_when_told():
     assert done.stdout.split() == ["mbds.kernel.stepper", "mbds.simulation.version_run", "numba", "xarray"]
 
 
+def test_what_tasks_need_is_not_sympy():
+    """A task of a model loaded before takes what sympy gave from the cache's record
+    (tests/campaign/test_known_models.py): importing for every task kind loads no sympy."""
+    code = ("import sys\nfrom mbds.campaign.tasks import import_for\nimport_for(['prepare', 'run', 'wear'])\n"
+            "print(' '.join(m for m in ('sympy', 'typer') if m in sys.modules) or '-')")
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert done.stdout.split() == ["-"]
+
+
 def test_the_console_script_exits_with_the_commands_code_and_its_output_flushed(tmp_path):
     """The console script leaves without the interpreter's teardown: the exit code and everything
     printed must survive that."""
