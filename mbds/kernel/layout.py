@@ -47,8 +47,8 @@ ModelArrays = namedtuple(
 
 Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta trig dpos dvel dacc djac dsc zero margin motion")
 """Body kinematics at one state: world points (m), bounding boxes, poses, velocities, the
-Jacobians B and their derivative terms, cosine and sine of each body's angle, dependent coordinates, detection margins (m) and
-speed bounds (see mbds.kernel.motion)."""
+Jacobians B and their derivative terms, cosine and sine of each body's angle, dependent
+coordinates, detection margins (m) and speed bounds (see mbds.kernel.motion)."""
 
 Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work order")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
