@@ -33,6 +33,7 @@ from mbds.kernel.layout import (
 )
 from mbds.kernel.active_set import recall_states, remember_states, solve_states
 from mbds.kernel.lcp import SOLVED, lemke
+from mbds.kernel.one_contact import solve_one_contact
 from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope
 from mbds.kernel.rollback import edge_end_point
 
@@ -235,6 +236,18 @@ def contact_directions(rows, dyn, index, count):
 
 
 @jit(inline="always")
+def closed_directions(nc, contacts, rows, dyn, settings, index):
+    """:func:`contact_directions` of the closed contacts among the nc detected (the only ones
+    the impact and contact-force LCPs take); index: scratch for their list."""
+    count = 0
+    for i in range(nc):
+        if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN]:
+            index[count] = i
+            count += 1
+    contact_directions(rows, dyn, index, count)
+
+
+@jit(inline="always")
 def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, index, count):
     """:func:`free_dynamics` and :func:`contact_directions` of the contacts index[:count] at
     (q, u, t); False if M is not positive definite."""
@@ -254,10 +267,13 @@ def solve(m, na, nh, family, vertex, edge, pb, settings, tol_lex, events, t):
     (mbds.kernel.active_set, at most STATE_ROUNDS rounds of state changes); a point that does
     not pass Lemke's solution check is discarded and the problem is solved by lexicographic
     Lemke. The states of the solution are remembered for the next LCP of the family. The
-    contact-force LCPs (LEMKE_ONLY) go to Lemke directly: a body resting on an unstable
-    equilibrium (a polygon on a vertex) keeps its symmetry to round-off with Lemke's answer, and
-    drifted from it with the linear solve (tests/physics/test_impacts.py, the ball that must not
-    spin); a step's forces also cost less than its impacts."""
+    contact-force LCPs (LEMKE_ONLY) of a single contact are first solved in closed form where
+    their solution is provably unique (mbds.kernel.one_contact), so that Lemke's method could
+    find no other; all others go to Lemke directly: with several contacts the LCP may have many
+    solutions (a body resting on two vertices of one edge), and a body resting on an unstable
+    equilibrium (a polygon on a vertex) kept its symmetry to round-off with Lemke's answer and
+    drifted from it with the linear solve of the remembered states (tests/physics/test_impacts.py,
+    the ball that must not spin)."""
     if m == 0:
         return True
     A = pb.A_flat[: m * m].reshape((m, m))
@@ -268,6 +284,8 @@ def solve(m, na, nh, family, vertex, edge, pb, settings, tol_lex, events, t):
         recall_states(pb.active, na, vertex, edge, memory, pb.memory_count[family], q, pb.state)
         solved = solve_states(A, q, z, w, na, nh, pb.hrow, pb.state, STATE_ROUNDS, settings[PIVOT_MAX], tol_lex,
                               int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+    elif na == 1:
+        solved = solve_one_contact(A, q, z, w, nh, tol_lex, pb.iwork, pb.fwork)
     if not solved:
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)

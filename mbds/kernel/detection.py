@@ -34,10 +34,11 @@ contacts with one body are those within DEEP x skin of its nearest face."""
 
 
 @jit(refcount=False)
-def world_points(pose, points, point_start, out):
-    """Body-frame ``points`` (P, 2) of every body moved to the world by ``pose`` (nb, 3)."""
+def world_points(pose, trig, points, point_start, out):
+    """Body-frame ``points`` (P, 2) of every body moved to the world by ``pose`` (nb, 3), with
+    trig (nb, 2) the cosine and sine of each body's angle."""
     for b in range(pose.shape[0]):
-        c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
+        c, s = trig[b, 0], trig[b, 1]
         for i in range(point_start[b], point_start[b + 1]):
             _world_point(pose, b, c, s, points, i, out)
 
@@ -51,18 +52,17 @@ def _world_point(pose, b, c, s, points, i, out):
 
 
 @jit(refcount=False)
-def contact_points(pose, points, c_vertex_body, c_vertex, c_edge_body, c_edge, index, count, out):
+def contact_points(pose, trig, points, c_vertex_body, c_vertex, c_edge_body, c_edge, index, count, out):
     """The world points (into ``out``, as :func:`world_points` computes them) of the vertex and
     the edge's two points of the contacts index[:count]; the other points are left as they
     are."""
     for k in range(count):
         i = index[k]
         b = c_vertex_body[i]
-        _world_point(pose, b, np.cos(pose[b, 2]), np.sin(pose[b, 2]), points, c_vertex[i], out)
+        _world_point(pose, b, trig[b, 0], trig[b, 1], points, c_vertex[i], out)
         b = c_edge_body[i]
-        c, s = np.cos(pose[b, 2]), np.sin(pose[b, 2])
-        _world_point(pose, b, c, s, points, c_edge[i], out)
-        _world_point(pose, b, c, s, points, c_edge[i] + 1, out)
+        _world_point(pose, b, trig[b, 0], trig[b, 1], points, c_edge[i], out)
+        _world_point(pose, b, trig[b, 0], trig[b, 1], points, c_edge[i] + 1, out)
 
 
 @jit(refcount=False)

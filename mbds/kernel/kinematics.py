@@ -29,14 +29,17 @@ DEPENDENT = 2
 
 
 @jit(refcount=False)
-def body_frames(binding, binding_index, start_pose, carrier, pose, vel, B, bhat, beta):
+def body_frames(binding, binding_index, start_pose, carrier, pose, vel, B, bhat, beta, trig):
     """The parts of every body's state that do not change: B, bhat and beta of axes that are
-    generalized or fixed coordinates, and pose and velocity of fixed ones. Call it once on the
-    arrays that :func:`body_states` then fills, which writes only what changes."""
+    generalized or fixed coordinates, pose and velocity of fixed ones, and (cos, sin) of fixed
+    angles in trig (nb, 2). Call it once on the arrays that :func:`body_states` then fills, which
+    writes only what changes."""
     n = B.shape[2]
     for b in range(binding.shape[0]):
         if carrier[b] >= 0:
             continue
+        if binding[b, 2] == FIXED:
+            trig[b, 0], trig[b, 1] = np.cos(start_pose[b, 2]), np.sin(start_pose[b, 2])
         for a in range(3):
             kind = binding[b, a]
             if kind == DEPENDENT:
@@ -55,9 +58,12 @@ def body_frames(binding, binding_index, start_pose, carrier, pose, vel, B, bhat,
 @jit(refcount=False)
 def body_states(
     binding, binding_index, carrier, offset, q, qd, dep_pos, dep_vel, dep_jac, dep_scalar, pose, vel, B, bhat, beta,
+    trig,
 ):
-    """Pose (nb, 3), velocity (nb, 3), B (nb, 3, n), bhat (nb, 3) and beta (nb, 3) of every body,
-    in arrays that :func:`body_frames` prepared.
+    """Pose (nb, 3), velocity (nb, 3), B (nb, 3, n), bhat (nb, 3), beta (nb, 3) and (cos, sin) of
+    the angle (trig, nb x 2) of every body, in arrays that :func:`body_frames` prepared. Each
+    angle's cosine and sine are computed once: fixed angles by :func:`body_frames`, a virtual
+    body's at a zero angle offset are its carrier's.
 
     dep_pos, dep_vel (m,), dep_jac (m, n), dep_scalar (m,): the dependent coordinates' values,
     velocities, J and j at the current state. Virtual bodies get pose and velocity from their
@@ -83,11 +89,13 @@ def body_states(
                     s += dep_jac[k, j] * qd[j]
                 bhat[b, a] = dep_vel[k] - s
                 beta[b, a] = dep_scalar[k]
+        if binding[b, 2] != FIXED:
+            trig[b, 0], trig[b, 1] = np.cos(pose[b, 2]), np.sin(pose[b, 2])
     for b in range(nb):
         c = carrier[b]
         if c < 0:
             continue
-        cs, sn = np.cos(pose[c, 2]), np.sin(pose[c, 2])
+        cs, sn = trig[c, 0], trig[c, 1]
         dx = cs * offset[b, 0] - sn * offset[b, 1]
         dy = sn * offset[b, 0] + cs * offset[b, 1]
         pose[b, 0] = pose[c, 0] + dx
@@ -96,6 +104,10 @@ def body_states(
         vel[b, 0] = vel[c, 0] - vel[c, 2] * dy
         vel[b, 1] = vel[c, 1] + vel[c, 2] * dx
         vel[b, 2] = vel[c, 2]
+        if offset[b, 2] == 0.0:
+            trig[b, 0], trig[b, 1] = cs, sn
+        else:
+            trig[b, 0], trig[b, 1] = np.cos(pose[b, 2]), np.sin(pose[b, 2])
         for a in range(3):
             for j in range(n):
                 B[b, a, j] = B[c, a, j]

@@ -45,10 +45,10 @@ ModelArrays = namedtuple(
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
-Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta dpos dvel dacc djac dsc zero margin motion")
+Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta trig dpos dvel dacc djac dsc zero margin motion")
 """Body kinematics at one state: world points (m), bounding boxes, poses, velocities, the
-Jacobians B and their derivative terms, dependent coordinates, detection margins (m) and
-speed bounds (see mbds.kernel.motion)."""
+Jacobians B and their derivative terms, cosine and sine of each body's angle, dependent
+coordinates, detection margins (m) and speed bounds (see mbds.kernel.motion)."""
 
 Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work order")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
@@ -106,7 +106,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     c, size = capacity, 3 * capacity
     f = np.zeros
     bodies = Bodies(
-        f((points, 2)), f((nb, 4)), f((nb, 3)), f((nb, 3)), f((nb, 3, n)), f((nb, 3)), f((nb, 3)),
+        f((points, 2)), f((nb, 4)), f((nb, 3)), f((nb, 3)), f((nb, 3, n)), f((nb, 3)), f((nb, 3)), f((nb, 2)),
         f(m), f(m), f(m), f((m, n)), f(m), f(n), f(pairs), f((nb, 4)),
     )
     i = np.int64

@@ -23,21 +23,26 @@ SPEED, SPIN, ACCEL, SPIN_ACCEL = range(4)
 
 
 @jit(refcount=False)
-def body_motion(B, bhat, beta, u, acc, other, motion):
-    """Fill motion (nb, 4) with the speeds of every body at velocities u and the larger of its
-    accelerations at q'' = acc and q'' = other (an acceleration that is not finite counts as
-    zero; pass acc again as ``other`` for one)."""
+def body_motion(carrier, B, bhat, beta, u, acc, other, speeds, motion):
+    """Fill motion (nb, 4) with the speeds of every body at velocities u (only when ``speeds``:
+    else those already there are kept) and the larger of its accelerations at q'' = acc and
+    q'' = other (an acceleration that is not finite counts as zero; pass acc again as ``other``
+    for one). Rows of virtual bodies (carrier >= 0) are not written: their bounds are their
+    carrier's (see :func:`_pair_rates`)."""
     nb, _, n = B.shape
     known = _finite(acc)
     known_other = _finite(other)
     for b in range(nb):
-        vx, vy, w = bhat[b, 0], bhat[b, 1], bhat[b, 2]
-        for k in range(n):
-            vx += B[b, 0, k] * u[k]
-            vy += B[b, 1, k] * u[k]
-            w += B[b, 2, k] * u[k]
-        motion[b, SPEED] = np.sqrt(vx * vx + vy * vy)
-        motion[b, SPIN] = abs(w)
+        if carrier[b] >= 0:
+            continue
+        if speeds:
+            vx, vy, w = bhat[b, 0], bhat[b, 1], bhat[b, 2]
+            for k in range(n):
+                vx += B[b, 0, k] * u[k]
+                vy += B[b, 1, k] * u[k]
+                w += B[b, 2, k] * u[k]
+            motion[b, SPEED] = np.sqrt(vx * vx + vy * vy)
+            motion[b, SPIN] = abs(w)
         linear, angular = _acceleration(B, beta, b, acc, known)
         second, second_angular = _acceleration(B, beta, b, other, known_other)
         motion[b, ACCEL] = max(second, linear)

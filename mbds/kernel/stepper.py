@@ -36,7 +36,7 @@ from mbds.kernel.contact_problem import (
     CLOSED_FRACTION,
     REST_FRACTION,
     accelerations,
-    contact_directions,
+    closed_directions,
     contact_forces,
     contact_laws,
     dynamics,
@@ -115,7 +115,7 @@ def advance(
     n = q.shape[0]
     heated = model.pair_heated.any()
     body_frames(model.binding, model.binding_index, model.start_pose, model.carrier, bodies.pose, bodies.vel,
-                bodies.B, bodies.bhat, bodies.beta)
+                bodies.B, bodies.bhat, bodies.beta, bodies.trig)
     passes = 0.0
     while True:
         passes += 1.0
@@ -127,12 +127,12 @@ def advance(
                 return NOT_FINITE
         # --- 1, 2: kinematics and contacts at the current state
         _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
-        world_points(bodies.pose, model.points, model.point_start, bodies.world)
+        world_points(bodies.pose, bodies.trig, model.points, model.point_start, bodies.world)
         tracked = tracked_depth(bodies.world, contacts, back.tracked[0])  # before detection replaces them
         if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a2, dyn.minv_h, bodies.motion)
+        body_motion(model.carrier, bodies.B, bodies.bhat, bodies.beta, u, a2, dyn.minv_h, True, bodies.motion)
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
         detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
@@ -165,7 +165,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-                contact_directions(rows, dyn, contacts.order, nc)
+                closed_directions(nc, contacts, rows, dyn, settings, pb.active)
                 contact_forces(nc, contacts, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
@@ -185,7 +185,7 @@ def advance(
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-        contact_directions(rows, dyn, contacts.order, nc)
+        closed_directions(nc, contacts, rows, dyn, settings, pb.active)
         # --- 4: impact
         # a closed contact impacts when it approaches faster than ZeroVelocityTolerance, or when a
         # slower approach would take it beyond maximumPenetration within a maximum step (else the
@@ -226,7 +226,8 @@ def advance(
                 back.tracked[0] = 0
                 continue
         # --- 6: step size
-        body_motion(bodies.B, bodies.bhat, bodies.beta, u, a1, a1, bodies.motion)
+        # (the speeds at u are those of step 2 unless an impact changed u)
+        body_motion(model.carrier, bodies.B, bodies.bhat, bodies.beta, u, a1, a1, impacting, bodies.motion)
         dt = _step_size(model, nc, na, contacts.gap, bodies, rows, pb, a1, settings, clock, back)
         clock[DT] = dt
         t2 = t + dt
@@ -295,8 +296,8 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         u_star[k] = u[k] + dt * a1[k]
     if na > 0:
         _body_kinematics(dependent_state, dependent_jacobian, model, q_star, u_star, t2, bodies)
-        contact_points(bodies.pose, model.points, contacts.vb, contacts.vertex, contacts.eb, contacts.edge, active, na,
-                       bodies.world)
+        contact_points(bodies.pose, bodies.trig, model.points, contacts.vb, contacts.vertex, contacts.eb,
+                       contacts.edge, active, na, bodies.world)
         contact_geometry(bodies.world, contacts.vertex, contacts.edge, active, na, contacts.xi, contacts.gap,
                          contacts.normal, contacts.point)
         _contact_kinematics(active, na, contacts, model, bodies, rows)
@@ -331,7 +332,7 @@ def _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies
         dependent_jacobian(q, u, t, model.p, bodies.djac, bodies.dsc)
     body_states(model.binding, model.binding_index, model.carrier, model.offset, q, u,
                 bodies.dpos, bodies.dvel, bodies.djac, bodies.dsc, bodies.pose, bodies.vel, bodies.B, bodies.bhat,
-                bodies.beta)
+                bodies.beta, bodies.trig)
 
 
 @jit(inline="always")

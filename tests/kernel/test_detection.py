@@ -18,7 +18,7 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     points = np.vstack(shapes)
     start = np.concatenate([[0], np.cumsum([len(s) for s in shapes])]).astype(np.int64)
     world = np.empty_like(points)
-    world_points(pose, points, start, world)
+    world_points(pose, np.column_stack([np.cos(pose[:, 2]), np.sin(pose[:, 2])]), points, start, world)
     boxes = np.empty((len(shapes), 4))
     bounding_boxes(world, start, boxes)
     out_i = [np.empty(capacity, dtype=np.int64) for _ in range(5)]

@@ -35,9 +35,10 @@ def dependent(q, qd, t):
 def states(q, qd, t):
     nb, n = 3, 4
     pose, vel, B = np.empty((nb, 3)), np.empty((nb, 3)), np.empty((nb, 3, n))
-    bhat, beta = np.empty((nb, 3)), np.empty((nb, 3))
-    body_frames(BINDING, INDEX, START, CARRIER, pose, vel, B, bhat, beta)
-    body_states(BINDING, INDEX, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta)
+    bhat, beta, trig = np.empty((nb, 3)), np.empty((nb, 3)), np.empty((nb, 2))
+    body_frames(BINDING, INDEX, START, CARRIER, pose, vel, B, bhat, beta, trig)
+    body_states(BINDING, INDEX, CARRIER, OFFSET, q, qd, *dependent(q, qd, t), pose, vel, B, bhat, beta, trig)
+    np.testing.assert_array_equal(trig, np.column_stack([np.cos(pose[:, 2]), np.sin(pose[:, 2])]))
     return pose, vel, B, bhat, beta
 
 

@@ -49,7 +49,11 @@ def swing_starts(run, after: float) -> np.ndarray:
 def test_it_settles_into_a_period_two_motion(run):
     """Over the last four seconds a long and a short swing of the bird alternate (every long
     swing outlasts every short one) and each pair lasts the same within 1.5 %, as do the bird's
-    lowest angles within 2 % (the sleeve's jam chatters sideways, which leaves this jitter)."""
+    lowest angles within 3 % (the sleeve's jam chatters sideways, which leaves this jitter). The
+    motion is sensitive to round-off: runs that differ by 1e-10 rad at 0.27 s differ by 1e-2 at
+    1.5 s, and the lowest angles of the last seconds sit near -0.600 rad or near -0.590 rad
+    (2.0 % apart) depending on such differences (maximumPenetration 1.0000001e-6 instead of
+    1e-6 gives -0.5886 ... -0.6007)."""
     bird = run.q[:, 3]
     starts = swing_starts(run, 6.0)
     swings = np.diff(starts)
@@ -60,4 +64,4 @@ def test_it_settles_into_a_period_two_motion(run):
     assert len(periods) >= 10
     assert np.ptp(periods) < 0.015 * periods.mean()
     lowest = np.array([bird[(run.time >= a) & (run.time < b)].min() for a, b in zip(starts[:-2:2], starts[2::2])])
-    assert np.ptp(lowest) < 0.02 * abs(lowest.mean())
+    assert np.ptp(lowest) < 0.03 * abs(lowest.mean())
