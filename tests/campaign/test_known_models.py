@@ -21,7 +21,6 @@ from mbds.io.folder import read_model_files
 from mbds.model.arrays import flatten
 from mbds.model.load import assemble_model, load_model, remembered_model
 from tests.campaign.models import two_mass
-from tests.campaign.test_known_structures import cache  # noqa: F401  (a private cache holding 2mass compiled)
 from tests.examples import copy_example
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -39,7 +38,7 @@ def assert_same_model(ours, theirs):
         assert np.asarray(a).tobytes() == np.asarray(b).tobytes(), name.name
 
 
-def test_the_record_gives_the_model_its_expressions_give_for_worn_shapes_too(tmp_path, cache):  # noqa: F811
+def test_the_record_gives_the_model_its_expressions_give_for_worn_shapes_too(tmp_path, cache):
     folder = tmp_path / "2mass"
     copy_example("2mass", folder)
     key = load_model(folder).compiled.source_hash  # from the expressions: the record is kept
@@ -83,7 +82,7 @@ def as_a_worker(plan, cache: Path, tmp_path: Path) -> dict:
     return json.loads(done.stdout.splitlines()[-1])
 
 
-def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_path, cache):  # noqa: F811
+def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_path, cache):
     first = two_mass(tmp_path / "first", None, jobs="000-001")
     results = {task.id: run_task(task) for task in expand(first).tasks}  # the records are kept here
     assert all(r["state"] == "done" for r in results.values()), results
@@ -100,7 +99,7 @@ def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_pat
                 assert ours[name].values.tobytes() == theirs[name].values.tobytes(), (version, name)
 
 
-def test_the_warm_up_of_all_variants_leaves_the_cache_as_a_campaign_run_before(tmp_path, cache):  # noqa: F811
+def test_the_warm_up_of_all_variants_leaves_the_cache_as_a_campaign_run_before(tmp_path, cache):
     """``warm_up(plan)`` keeps every variant's record: a campaign after it needs no sympy on its
     workers, and its prepare tasks find the structures that its runs use."""
     job = two_mass(tmp_path / "a", "c'gravity = 9.81, 5\ncontact.mass1-mass2.friction = 0.1, 0.3\n", jobs="000-000")

@@ -5,12 +5,9 @@ run use other code than its own."""
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
-
-import pytest
 
 from mbds.campaign import known_structures as known
 from mbds.campaign.plan import expand
@@ -24,23 +21,6 @@ from tests.campaign.models import two_mass
 
 ROOT = Path(__file__).resolve().parents[2]
 TWO_VARIANTS = "c'gravity = 9.81, 5\n"
-
-
-@pytest.fixture
-def cache(tmp_path, monkeypatch):
-    """A private cache folder holding the 2mass model compiled (copied from the session's)."""
-    folder = tmp_path / "cache"
-    shared = Path(os.environ["MBDS_CACHE_DIR"])
-    monkeypatch.setenv("MBDS_CACHE_DIR", str(shared))
-    key = load_model(ROOT / "campaigns" / "2mass").compiled.source_hash  # compiled into the shared cache
-    folder.mkdir(mode=0o700)
-    (folder / "__pycache__").mkdir(mode=0o700)
-    for path in shared.glob(f"*{key}*"):
-        shutil.copy2(path, folder / path.name)
-    for path in (shared / "__pycache__").glob(f"*{key}*"):
-        shutil.copy2(path, folder / "__pycache__" / path.name)
-    monkeypatch.setenv("MBDS_CACHE_DIR", str(folder))
-    return folder
 
 
 def test_the_digest_follows_every_input_and_nothing_else(tmp_path):
