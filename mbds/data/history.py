@@ -1,5 +1,8 @@
 """``history.nc``: the samples of one run as a CF-style NetCDF file, and the exact state the run
-ended in (group ``final_state``) for continuing it. The schema is documented in docs/outputs.md."""
+ended in (group ``final_state``) for continuing it. The schema is documented in docs/outputs.md.
+
+Written and read with netCDF4 alone (:mod:`mbds.io.netcdf`): a campaign's worker ranks do not
+import xarray; ``xarray.open_dataset`` reads the file as if xarray had written it."""
 
 from __future__ import annotations
 
@@ -8,9 +11,9 @@ from pathlib import Path
 
 import netCDF4
 import numpy as np
-import xarray as xr
 
 from mbds._version import __version__
+from mbds.io.netcdf import Variable, opened, write_variables
 from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
 from mbds.data.run_result import RunState
 from mbds.errors import ModelError
@@ -45,8 +48,8 @@ class HistoryStream:
 
     def __init__(self, path: str | Path, header: RunHeader):
         self.path, self.header = Path(path), header
-        static_dataset(header).to_netcdf(self.path, format="NETCDF4", engine="netcdf4")
-        self.file = netCDF4.Dataset(self.path, "a")
+        self.file = netCDF4.Dataset(self.path, "w", format="NETCDF4")
+        write_variables(self.file, static_variables(header))
         self.file.createDimension("time", None)
         self.variables: dict[str, netCDF4.Variable] = {}
         self.count = 0
@@ -64,19 +67,22 @@ class HistoryStream:
         final state (group ``final_state``); the file is then complete."""
         if not self.variables:  # no sample at all: the time variables exist, empty
             self.append(empty_series(record))
-        for name, values, attributes in (
-            ("point_lost_work", record.point_lost_work, _cf("mechanical energy lost at the point in this run", "J")),
-            ("point_lost_work_smoothed", record.point_lost_work_smoothed, _cf(
-                "point_lost_work smoothed by smoothWorkLeftRight", "J",
-                half_width=record.options["smooth_work_left_right"])),
-        ):
-            variable = self.file.createVariable(name, "f8", ("point",), fill_value=np.nan)
-            variable.setncatts(attributes)
-            variable[:] = values
+        write_variables(self.file, [
+            Variable("point_lost_work", ("point",), record.point_lost_work,
+                     _cf("mechanical energy lost at the point in this run", "J")),
+            Variable("point_lost_work_smoothed", ("point",), record.point_lost_work_smoothed,
+                     _cf("point_lost_work smoothed by smoothWorkLeftRight", "J",
+                         half_width=record.options["smooth_work_left_right"])),
+        ])
         self.file.setncatts(_attributes(record))
+        self._close_with_state(record)
+
+    def _close_with_state(self, record: RunRecord) -> None:
+        """Write the group ``final_state`` and close the file."""
+        state = self.file.createGroup(STATE_GROUP)
+        state.setncatts({"Conventions": "CF-1.10"})
+        write_variables(state, state_variables(record.final_state, record.coordinate_units))
         self.file.close()
-        state_dataset(record.final_state, record.coordinate_units).to_netcdf(
-            self.path, mode="a", group=STATE_GROUP, engine="netcdf4")
 
     def close(self) -> None:
         """Release the file (after :meth:`finish`, or when the run failed)."""
@@ -130,14 +136,14 @@ def series_variables(header: RunHeader, s: SampleSeries) -> dict[str, tuple[tupl
     return out
 
 
-def static_dataset(h: RunHeader) -> xr.Dataset:
+def static_variables(h: RunHeader) -> list[Variable]:
     """The variables of ``history.nc`` that do not depend on time: names, units, bodies, shape
     points and watches (the attributes come with the summary)."""
     frames = ["xy" if a else "nt" for a in h.watch_absolute]
-    data = {
-        "shape_x": ("point", h.shape[:, 0], _cf("shape point x in the body frame", "m")),
-        "shape_y": ("point", h.shape[:, 1], _cf("shape point y in the body frame", "m")),
-    }
+    data = [
+        Variable("shape_x", ("point",), h.shape[:, 0], _cf("shape point x in the body frame", "m")),
+        Variable("shape_y", ("point",), h.shape[:, 1], _cf("shape point y in the body frame", "m")),
+    ]
     coords = {
         "coordinate": ("coordinate", _text(h.coordinates), _named("generalized coordinate")),
         "coordinate_unit": ("coordinate", _text(h.coordinate_units), _named("UDUNITS unit of the coordinate")),
@@ -161,7 +167,12 @@ def static_dataset(h: RunHeader) -> xr.Dataset:
         "point_body_name": ("point", _text([h.bodies[i] for i in h.point_body]), _named("name of the point's body")),
         "point_number": ("point", h.point_number.astype(np.int32), _named("point number in its body's shape")),
     }
-    return xr.Dataset(data, coords=coords)
+    return data + [Variable(name, _dims(dims), values, attrs, coordinate=True)
+                   for name, (dims, values, attrs) in coords.items()]
+
+
+def _dims(dims: str | tuple[str, ...]) -> tuple[str, ...]:
+    return (dims,) if isinstance(dims, str) else dims
 
 
 def _cf(long_name: str, units: str, **extra) -> dict:
@@ -216,10 +227,11 @@ def _attributes(r: RunRecord) -> dict:
     return attrs
 
 
-def state_dataset(state: RunState, units: list[str]) -> xr.Dataset:
-    """The ``final_state`` group: the kernel state, exactly; ``units`` of the coordinates."""
+def state_variables(state: RunState, units: list[str]) -> list[Variable]:
+    """The variables of the ``final_state`` group: the kernel state, exactly; ``units`` of the
+    coordinates."""
     columns = "impN impT impX impY work angle"
-    return xr.Dataset(attrs={"Conventions": "CF-1.10"}, data_vars={
+    variables = {
         "clock": ("clock_entry", state.clock, {**_named("kernel clock and counters"), "entries": CLOCK_ENTRIES}),
         "q": ("coordinate", state.q, _per_coordinate("generalized coordinates", "coordinate_unit")),
         "qd": ("coordinate", state.u, _per_coordinate("generalized velocities", "velocity_unit")),
@@ -229,21 +241,17 @@ def state_dataset(state: RunState, units: list[str]) -> xr.Dataset:
         "point_loss": ("kernel_point", state.point_loss, _cf("lost work per kernel point (closing points too)", "J")),
         "point_interval": (("kernel_point", "point_column"), state.point_interval,
                            {**_named("per-point sums since the last sample"), "columns": columns}),
-    })
+    }
+    return [Variable(name, _dims(dims), values, attrs) for name, (dims, values, attrs) in variables.items()]
 
 
 def read_final_state(path: str | Path) -> tuple[RunState, dict]:
     """The state a run ended in and the attributes of its ``history.nc``; ModelError when the
     file is missing or not a complete mbds history."""
     with _opened(path, STATE_GROUP) as ds:
-        state = RunState(
-            clock=ds["clock"].values.copy(),
-            q=ds["q"].values.copy(),
-            u=ds["qd"].values.copy(),
-            rng=ds["rng"].values.astype(np.uint64),
-            point_loss=ds["point_loss"].values.copy(),
-            point_interval=ds["point_interval"].values.copy(),
-        )
+        values = {name: ds.variables[name][:] for name in ("clock", "q", "qd", "rng", "point_loss", "point_interval")}
+    state = RunState(clock=values["clock"], q=values["q"], u=values["qd"], rng=values["rng"].astype(np.uint64),
+                     point_loss=values["point_loss"], point_interval=values["point_interval"])
     if state.point_interval.shape[1:] == (K.TEMP,):  # written before contact temperatures: none
         state.point_interval = np.column_stack([state.point_interval, np.full(len(state.point_interval), np.nan)])
     if state.clock.shape != (K.CLOCK,) or state.point_interval.shape[1:] != (K.POINT_COLUMNS,):
@@ -252,18 +260,19 @@ def read_final_state(path: str | Path) -> tuple[RunState, dict]:
 
 
 def read_attributes(path: str | Path) -> dict:
-    """The global attributes of a ``history.nc`` (``complete``, ``end_time``, ...)."""
+    """The global attributes of a ``history.nc`` (``complete``, ``end_time``, ...), as xarray
+    shows them (without ``coordinates``, which names coordinate variables)."""
     with _opened(path) as ds:
-        return dict(ds.attrs)
+        return {name: ds.getncattr(name) for name in ds.ncattrs() if name != "coordinates"}
 
 
 def read_point_losses(path: str | Path) -> dict[str, np.ndarray]:
     """The lost work (J) at each distinct shape point of each body during the run of a
     ``history.nc``, by body name, in point order."""
     with _opened(path) as ds:
-        bodies = [str(name) for name in ds["body"].values]
-        owner, number = ds["point_body"].values, ds["point_number"].values
-        loss = ds["point_lost_work"].values
+        bodies = [str(name) for name in ds.variables["body"][:]]
+        owner, number = ds.variables["point_body"][:], ds.variables["point_number"][:]
+        loss = ds.variables["point_lost_work"][:]
     losses = {}
     for index, name in enumerate(bodies):
         mine = owner == index
@@ -274,13 +283,10 @@ def read_point_losses(path: str | Path) -> dict[str, np.ndarray]:
 
 @contextlib.contextmanager
 def _opened(path: str | Path, group: str | None = None):
-    """The dataset of ``history.nc`` (or of one of its groups); ModelError when the file is
-    missing or not an mbds history."""
+    """``history.nc`` open (or one of its groups: see :func:`mbds.io.netcdf.opened`);
+    ModelError when the file is missing or not an mbds history."""
     path = Path(path)
     if not path.is_file():
         raise ModelError(f"no {FILE_NAME} here: run this version first", path.parent)
-    try:
-        with xr.open_dataset(path, group=group, engine="netcdf4") as ds:
-            yield ds
-    except (OSError, KeyError, ValueError) as exc:
-        raise ModelError(f"not a readable mbds history ({exc})", path) from None
+    with opened(path, group, "mbds history") as ds:
+        yield ds

@@ -15,9 +15,9 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 
 from mbds._version import __version__
+from mbds.io.netcdf import Variable, write_file
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
 from mbds.io.folder import (
@@ -57,7 +57,7 @@ def create_next_version(folder: str | Path, losses: dict[str, np.ndarray]) -> Pa
         if plan.constants_after != plan.constants_before:
             cns = files.world.resolve(files.world.settings.constants_file)
             write_atomic(temporary / cns.relative_to(folder), format_constants(ConstantsFile(plan.constants_after), separator))
-        wear_dataset(plan, files, version).to_netcdf(temporary / WEAR_FILE)
+        write_file(temporary / WEAR_FILE, wear_variables(plan, files), wear_attributes(plan, version))
         os.rename(temporary, target)
     except BaseException:
         shutil.rmtree(temporary, ignore_errors=True)
@@ -65,36 +65,38 @@ def create_next_version(folder: str | Path, losses: dict[str, np.ndarray]) -> Pa
     return target
 
 
-def wear_dataset(plan: WearPlan, files: ModelFiles, version: int) -> xr.Dataset:
-    """What a new version changed: per reshaped body and watched point the loss used (J),
+def wear_variables(plan: WearPlan, files: ModelFiles) -> list[Variable]:
+    """What a new version changed (the variables of ``wear.nc``, in xarray's order: each index
+    before the variables along it): per reshaped body and watched point the loss used (J),
     displacement (m), direction and old and new coordinates (m, body frame); constants before
     and after."""
-    data = {}
+    data = []
     for wear in plan.bodies:
         old = next(s for b, s in zip(files.bodies, files.shapes) if b.main.name == wear.body).points
-        dim = f"{wear.body}_point"
-
-        def variable(values, units, long_name, dim=dim, points=wear.points):
-            return xr.DataArray(values, {dim: points}, [dim], attrs={"units": units, "long_name": long_name})
-
-        data[f"{wear.body}_loss"] = variable(wear.loss, "J", f"lost work used for reshaping {wear.body}")
-        data[f"{wear.body}_displacement"] = variable(
-            wear.displacement, "m", f"displacement of the points of {wear.body} along their direction"
-        )
+        dim = (f"{wear.body}_point",)
+        data.append(Variable(dim[0], dim, np.asarray(wear.points), {}, coordinate=True))
+        columns = [("loss", wear.loss, "J", f"lost work used for reshaping {wear.body}"),
+                   ("displacement", wear.displacement, "m", f"displacement of the points of {wear.body} along their direction")]
         for axis, label in enumerate("xy"):
-            data[f"{wear.body}_direction_{label}"] = variable(
-                wear.direction[:, axis], "1", f"reshaping direction, {label} (body frame)"
-            )
-            data[f"{wear.body}_old_{label}"] = variable(old[wear.points, axis], "m", f"{label} before reshaping (body frame)")
-            data[f"{wear.body}_new_{label}"] = variable(wear.shape[wear.points, axis], "m", f"{label} after reshaping (body frame)")
+            columns += [(f"direction_{label}", wear.direction[:, axis], "1", f"reshaping direction, {label} (body frame)"),
+                        (f"old_{label}", old[wear.points, axis], "m", f"{label} before reshaping (body frame)"),
+                        (f"new_{label}", wear.shape[wear.points, axis], "m", f"{label} after reshaping (body frame)")]
+        data += [Variable(f"{wear.body}_{name}", dim, np.asarray(values), {"units": units, "long_name": long_name})
+                 for name, values, units, long_name in columns]
     names = list(plan.constants_after)
     if names:
+        data.append(Variable("constant", ("constant",), np.asarray(names), {}, coordinate=True))
         for key, values, long_name in (
             ("constant_before", plan.constants_before, "constant in the source version"),
             ("constant_after", plan.constants_after, "constant in the new version"),
         ):
-            data[key] = xr.DataArray([values[n] for n in names], {"constant": names}, ["constant"], attrs={"long_name": long_name})
-    attrs = {
+            data.append(Variable(key, ("constant",), np.asarray([values[n] for n in names]), {"long_name": long_name}))
+    return data
+
+
+def wear_attributes(plan: WearPlan, version: int) -> dict:
+    """The global attributes of ``wear.nc``."""
+    return {
         "title": "mbds wear update",
         "source_version": version_name(version),
         "new_version": version_name(version + 1),
@@ -102,4 +104,3 @@ def wear_dataset(plan: WearPlan, files: ModelFiles, version: int) -> xr.Dataset:
         "reshaped_bodies": ",".join(w.body for w in plan.bodies),
         "Conventions": "CF-1.10",
     }
-    return xr.Dataset(data, attrs=attrs)

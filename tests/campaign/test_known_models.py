@@ -1,7 +1,8 @@
 """A model loaded before is assembled from the compile cache's record, without sympy (issue 12):
 the record's model is the one its expressions give, for worn shapes too; runs from it are
-bit-identical to runs from the expressions; a worker's tasks on a warm cache import no sympy;
-a changed input misses the record."""
+bit-identical to runs from the expressions; a worker's tasks on a warm cache import neither
+sympy nor typer, xarray or pandas (the outputs are written with netCDF4 alone); a changed input
+misses the record."""
 
 import dataclasses
 import json
@@ -65,13 +66,13 @@ from mbds.campaign.tasks import import_for, run_task
 plan = pickle.loads(open(sys.argv[1], "rb").read())
 import_for({task.kind for task in plan.tasks})
 results = [run_task(task) for task in plan.tasks]
-print(json.dumps({"results": results, "loaded": [m for m in ("sympy", "typer") if m in sys.modules]}))
+print(json.dumps({"results": results, "loaded": [m for m in ("sympy", "typer", "xarray", "pandas") if m in sys.modules]}))
 """
 
 
 def as_a_worker(plan, cache: Path, tmp_path: Path) -> dict:
     """The results of ``plan``'s tasks run in order by a fresh process as a worker rank runs
-    them, and which of sympy and typer it imported."""
+    them, and which of sympy, typer, xarray and pandas it imported."""
     import pickle
 
     plan_file = tmp_path / "plan.pickle"
@@ -82,13 +83,15 @@ def as_a_worker(plan, cache: Path, tmp_path: Path) -> dict:
     return json.loads(done.stdout.splitlines()[-1])
 
 
-def test_a_worker_on_a_warm_cache_runs_without_sympy_and_bit_identically(tmp_path, cache):
+def test_a_worker_on_a_warm_cache_runs_a_chain_without_sympy_or_xarray_and_bit_identically(tmp_path, cache):
     first = two_mass(tmp_path / "first", None, jobs="000-001")
     results = {task.id: run_task(task) for task in expand(first).tasks}  # the records are kept here
     assert all(r["state"] == "done" for r in results.values()), results
     mark_compiled(load_model(first.parent / "000").compiled.source_hash)
     again = two_mass(tmp_path / "again", None, jobs="000-001")
-    worker = as_a_worker(expand(again), cache, tmp_path)
+    plan = expand(again)
+    assert [task.kind for task in plan.tasks] == ["prepare", "run", "wear", "run", "wear"]
+    worker = as_a_worker(plan, cache, tmp_path)
     assert [r["state"] for r in worker["results"]] == ["done"] * len(results)
     assert worker["loaded"] == [], f"a worker on a warm cache imported {worker['loaded']}"
     assert sum(r["compiled"] for r in worker["results"]) == 0

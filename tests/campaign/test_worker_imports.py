@@ -1,6 +1,7 @@
 """A campaign worker starts light (issue 12): importing what a worker runs (the executors, the
 scheduling loop and the task runner) loads neither sympy, xarray, typer nor scipy; a task
-imports the simulation layers when it runs."""
+imports the simulation layers when it runs, and never xarray or pandas (a whole chain run by a
+worker process: tests/campaign/test_known_models.py)."""
 
 import os
 import subprocess
@@ -41,13 +42,15 @@ def test_a_worker_rank_of_the_console_script_skips_the_command_line_parser():
 
 def test_workers_import_what_tasks_need_when_told():
     """Rank 0 tells the workers the plan's task kinds before its warm-up: importing for a run
-    loads the simulation layers and the kernel, so the first task does not wait for them."""
-    code = ("import sys\nfrom mbds.campaign.tasks import import_for\nimport_for(['run'])\n"
-            "print(' '.join(m for m in ('mbds.kernel.stepper', 'mbds.simulation.version_run', 'numba', 'xarray') "
-            "if m in sys.modules))")
+    loads the simulation layers and the kernel, so the first task does not wait for them; the
+    outputs are written with netCDF4 alone, without xarray and pandas."""
+    code = ("import sys\nfrom mbds.campaign.tasks import import_for\nimport_for(['prepare', 'run', 'wear'])\n"
+            "print(' '.join(m for m in ('mbds.kernel.stepper', 'mbds.simulation.version_run', 'mbds.wear.version', "
+            "'numba', 'netCDF4', 'xarray', 'pandas') if m in sys.modules))")
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
-    assert done.stdout.split() == ["mbds.kernel.stepper", "mbds.simulation.version_run", "numba", "xarray"]
+    assert done.stdout.split() == ["mbds.kernel.stepper", "mbds.simulation.version_run", "mbds.wear.version",
+                                   "numba", "netCDF4"]
 
 
 def test_what_tasks_need_is_not_sympy():

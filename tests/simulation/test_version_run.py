@@ -213,7 +213,7 @@ def stall(*args):
     Path({str(marker)!r}).touch()
     time.sleep(60)
 
-H.state_dataset = stall
+H.state_variables = stall
 run_version(Path({str(folder / '000')!r}), RunOptions(duration=0.2))
 """
     child = subprocess.Popen([sys.executable, "-c", script], env=os.environ.copy())
