@@ -13,10 +13,10 @@ import netCDF4
 import numpy as np
 
 from mbds._version import __version__
-from mbds.io.netcdf import Variable, opened, write_variables
 from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
 from mbds.data.run_result import RunState
 from mbds.errors import ModelError
+from mbds.io.netcdf import Variable, opened, write_variables
 from mbds.kernel import layout as K
 
 FILE_NAME = "history.nc"

@@ -90,5 +90,5 @@ def opened(path: str | Path, group: str | None = None, what: str = "mbds file"):
         with netCDF4.Dataset(path, "r") as file:
             file.set_auto_maskandscale(False)
             yield file if group is None else file.groups[group]
-    except (OSError, KeyError, ValueError, IndexError) as exc:
+    except (OSError, KeyError, ValueError) as exc:
         raise ModelError(f"not a readable {what} ({exc})", path) from None

@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 
 from mbds._version import __version__
-from mbds.io.netcdf import Variable, write_file
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
 from mbds.io.folder import (
@@ -27,6 +26,7 @@ from mbds.io.folder import (
     version_name,
     version_number,
 )
+from mbds.io.netcdf import Variable, write_file
 from mbds.io.shape import ShapeFile, format_shape
 from mbds.io.text import process_umask, write_atomic
 from mbds.wear.plan import WearPlan, plan_wear

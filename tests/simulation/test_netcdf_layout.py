@@ -13,12 +13,26 @@ import pytest
 import xarray as xr
 
 import mbds.simulation.version_run as version_run
-from mbds.data.history import STATE_GROUP, HistoryStream, read_final_state, read_point_losses, state_variables, static_variables
+from mbds.data.history import (
+    STATE_GROUP,
+    HistoryStream,
+    read_attributes,
+    read_final_state,
+    read_point_losses,
+    state_variables,
+    static_variables,
+)
+from mbds.errors import ModelError
 from mbds.io.folder import read_model_files
 from mbds.simulation.version_run import RunOptions, run_version
 from mbds.simulation.versions import ensure_version
 from mbds.wear.plan import plan_wear
-from mbds.wear.version import WEAR_FILE, create_next_version, wear_attributes, wear_variables
+from mbds.wear.version import (
+    WEAR_FILE,
+    create_next_version,
+    wear_attributes,
+    wear_variables,
+)
 from tests.examples import copy_example
 from tests.wear.test_reshape import write_model
 from tests.wear.test_version import WTC
@@ -171,3 +185,18 @@ def test_text_empty_or_not_is_written_as_xarray_writes_it(chain, tmp_path):
     assert_same_file(tmp_path / "ours.nc", tmp_path / "theirs.nc")
     with netCDF4.Dataset(tmp_path / "ours.nc") as file:
         assert file["watch"].dtype == np.float64 and file["dependent"].dtype is str
+
+
+def test_a_file_that_is_not_a_history_is_reported_with_its_path(chain, tmp_path):
+    garbage = tmp_path / "000" / "history.nc"
+    garbage.parent.mkdir()
+    garbage.write_bytes(b"not a NetCDF file")
+    with pytest.raises(ModelError, match=f"{garbage}: not a readable mbds history"):
+        read_attributes(garbage)
+    no_state = tmp_path / "001" / "history.nc"
+    no_state.parent.mkdir()
+    no_state.write_bytes((chain[0] / "001" / WEAR_FILE).read_bytes())  # a NetCDF file without final_state
+    with pytest.raises(ModelError, match="not a readable mbds history"):
+        read_final_state(no_state)
+    with pytest.raises(ModelError, match="not a readable mbds history"):
+        read_point_losses(no_state)
