@@ -1,6 +1,6 @@
 """One writer per folder: an advisory lock file held while a command works on a folder.
 
-``folder_lock(folder, command)`` creates ``<folder>/.mbds.lock`` atomically (``O_EXCL``), holding
+``folder_lock(folder, command)`` creates ``<folder>/.mbds.lock`` atomically (a hard link), holding
 the host, process id, start time (UTC, ISO 8601) and the command, and removes it when the block
 ends. A second command on the same folder finds the file and stops with a :class:`ModelError`
 naming the holder. A lock left by a process that no longer runs on this host (killed with
@@ -58,7 +58,8 @@ def folder_lock(folder: str | Path, command: str):
             "start": datetime.now(timezone.utc).isoformat(timespec="seconds"), "command": command}
     for _ in range(3):
         try:
-            descriptor = os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            if _created(path, mine):
+                break
         except FileExistsError:
             info = holder(folder)
             if info is None:  # released meanwhile
@@ -66,10 +67,6 @@ def folder_lock(folder: str | Path, command: str):
             if not is_stale(info):
                 raise ModelError(_busy(info, path), folder) from None
             _take_over(path, info)
-            continue
-        with os.fdopen(descriptor, "w", encoding="utf-8") as file:
-            json.dump(mine, file)
-        break
     else:
         raise ModelError(f"could not take the lock {path}: other processes keep taking it", folder)
     try:
@@ -77,6 +74,22 @@ def folder_lock(folder: str | Path, command: str):
     finally:
         if holder(folder) == mine:
             path.unlink(missing_ok=True)
+
+
+def _created(path: Path, info: dict) -> bool:
+    """Create the lock ``path`` holding ``info``, whole or not at all: written to a hidden file
+    beside it and linked to its name (FileExistsError when a lock is there), so that a process
+    killed meanwhile leaves no empty lock, which nobody could tell stale. False when that file
+    was removed before the link (a run clears its folder's ``.*.tmp``): try again."""
+    temporary = path.with_name(f"{path.name}.{socket.gethostname()}.{os.getpid()}.tmp")
+    temporary.write_text(json.dumps(info), encoding="utf-8")
+    try:
+        os.link(temporary, path)
+    except FileNotFoundError:
+        return False
+    finally:
+        temporary.unlink(missing_ok=True)
+    return True
 
 
 def _take_over(path: Path, stale: dict) -> None:

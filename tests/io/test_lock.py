@@ -43,6 +43,20 @@ def test_a_lock_left_by_a_killed_process_is_taken_over(tmp_path):
         assert holder(tmp_path)["pid"] == os.getpid()
 
 
+def test_a_process_killed_while_taking_the_lock_leaves_no_lock(tmp_path):
+    """Killed (SIGKILL) after writing what the lock holds and before it appears: no lock is left,
+    only a hidden file beside it, and the next command takes the lock. (A lock created empty and
+    then written could be left empty: unreadable, it was never taken over.)"""
+    code = ("import os, signal\nos.link = lambda *args: os.kill(os.getpid(), signal.SIGKILL)\n"
+            f"from mbds.io.lock import folder_lock\nwith folder_lock({str(tmp_path)!r}, 'killed'):\n    pass")
+    killed = subprocess.Popen([sys.executable, "-c", code])
+    assert killed.wait() == -signal.SIGKILL
+    assert holder(tmp_path) is None
+    assert [p.name for p in tmp_path.iterdir()] == [f"{LOCK_FILE}.{socket.gethostname()}.{killed.pid}.tmp"]
+    with folder_lock(tmp_path, "test"):
+        assert holder(tmp_path)["command"] == "test"
+
+
 def test_a_lock_of_another_host_is_never_taken_over(tmp_path):
     (tmp_path / LOCK_FILE).write_text(json.dumps({"host": "elsewhere", "pid": 1, "start": "x", "command": "mbds job"}))
     with pytest.raises(ModelError) as caught, folder_lock(tmp_path, "test"):

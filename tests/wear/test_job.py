@@ -45,9 +45,10 @@ def wearballs(folder: Path, jobs: str) -> Path:
 
 
 def hashes(folder: Path) -> dict[str, str]:
-    """Digests of the files below ``folder``, lock files (held while a command works) left out."""
+    """Digests of the files below ``folder``, lock files (held while a command works) and their
+    temporary files (left by a process killed while taking a lock) left out."""
     return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file() and p.name != LOCK_FILE}
+            for p in sorted(folder.rglob("*")) if p.is_file() and not p.name.startswith(LOCK_FILE)}
 
 
 def shape(version: Path, body: str) -> np.ndarray:
