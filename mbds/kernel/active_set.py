@@ -1,17 +1,22 @@
 """A guessed active set for the impact LCPs (the form of mbds.kernel.contact_problem.build_matrix),
 tried before Lemke's method.
 
-Each contact of an LCP is in one of four states: OPEN (no force), PRESSED (a normal force; a
-stick candidate then sticks), SLIDE_POS (pressed, sliding with gT' > 0: lambda_T = -mu lambda_N)
-and SLIDE_NEG (pressed, gT' < 0: lambda_T = +mu lambda_N). Given the states, the LCP reduces to
+Each contact of an LCP is in one of six states. Four have a normal force: PRESSED (a stick
+candidate then sticks), SLIDE_POS (sliding with gT' > 0: lambda_T = -mu lambda_N) and SLIDE_NEG
+(gT' < 0: lambda_T = +mu lambda_N), and OPEN has none (nor a tangential reserve; a slip rate
+where its tangential row needs one). The expansion LCP of an impact starts from impulses already
+in the cone (the third block of q, 2 mu Lambda_N, is positive), so a contact without a normal
+increment may still hold a tangential one: OPEN_STICK (its reserve lambda_0R an unknown, the
+contact sticks) and OPEN_NEG (its reserve at the cone's far end, lambda_0R = q_L, sliding
+backwards). Given the states, the LCP reduces to
 a linear system over the normal forces of the pressed contacts and the tangential reserves
 lambda_0R of the sticking ones (rows gN'' = 0 and gT''^+ = 0 of those contacts); the slip rates
-gT''^- of SLIDE_NEG and of open contacts that move backwards follow from their own rows. If the
+gT''^- of SLIDE_NEG, OPEN_NEG and of open contacts that move backwards follow from their own rows. If the
 solution is feasible, the full LCP vector z is assembled and must pass Lemke's solution check
 (mbds.kernel.lcp.check_solution) on the original data: only a solution of the same LCP is
 accepted. Otherwise the infeasible contacts change state (a negative normal force opens, an
-approaching open contact is pressed, a tangential reserve outside [0, 2 mu lambda_N] slides,
-a slip against its direction sticks) for at most ``rounds`` rounds; then the caller falls back
+approaching open contact is pressed, a tangential reserve outside its cone slides, a slip
+against its direction sticks) for at most ``rounds`` rounds; then the caller falls back
 to lexicographic Lemke.
 
 The states come from a memory of the last solved LCP of the same family (the compression or the
@@ -29,6 +34,8 @@ OPEN = 0
 PRESSED = 1
 SLIDE_POS = 2
 SLIDE_NEG = 3
+OPEN_STICK = 4
+OPEN_NEG = 5
 AT_BOUND = 1e-9
 """A reserve lambda_0L below AT_BOUND times lambda_0R counts as zero when states are remembered
 (it is computed as A z + q, so an exact zero comes out as round-off)."""
@@ -55,18 +62,21 @@ def remember_states(active, na, nh, hrow, vertex, edge, z, w, memory):
 
     A pressed stick candidate whose reserve lambda_0R is exactly 0 (non-basic in Lemke's answer)
     is remembered as sliding forwards, one whose other reserve lambda_0L (w) is zero (AT_BOUND) as
-    sliding backwards, even where it does not slip: two sticking contacts of one body on one
+    sliding backwards (OPEN_NEG without a normal increment), even where it does not slip: two sticking contacts of one body on one
     line make the system of the states singular, one of them at a bound of the cone does not."""
     g = 0
     for a in range(na):
         c = active[a]
         s = PRESSED if z[a] > 0.0 else OPEN
         if g < nh and hrow[g] == a:
+            at_far_end = z[na + nh + g] > 0.0 or w[na + nh + g] <= AT_BOUND * z[na + g]
             if s == PRESSED:
-                if z[na + nh + g] > 0.0 or w[na + nh + g] <= AT_BOUND * z[na + g]:
+                if at_far_end:
                     s = SLIDE_NEG
                 elif z[na + g] == 0.0:
                     s = SLIDE_POS
+            elif z[na + g] > 0.0:  # no normal increment, a tangential reserve (expansion)
+                s = OPEN_NEG if at_far_end else OPEN_STICK
             g += 1
         memory[a, 0] = vertex[c]
         memory[a, 1] = edge[c]
@@ -97,11 +107,11 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
     for _ in range(rounds + 1):
         k = 0
         for a in range(na):
-            if state[a] != OPEN:
+            if _pressed(state[a]):
                 var[k] = a
                 k += 1
         for g in range(nh):
-            if state[hrow[g]] == PRESSED:
+            if state[hrow[g]] == PRESSED or state[hrow[g]] == OPEN_STICK:
                 var[k] = na + g
                 k += 1
         if k + 1 > max_pivots:
@@ -110,6 +120,9 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
         for r in range(k):
             row = var[r]
             x[r] = -q[row]
+            for g in range(nh):  # OPEN_NEG: a known reserve lambda_0R = q_L
+                if state[hrow[g]] == OPEN_NEG:
+                    x[r] -= A[row, na + g] * q[na + nh + g]
             for c in range(k):
                 v = var[c]
                 S[r, c] = A[row, v]
@@ -129,14 +142,14 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
             nz += 1
         for g in range(nh):
             a = hrow[g]
-            if state[a] == SLIDE_NEG:
+            if state[a] == SLIDE_NEG or state[a] == OPEN_NEG:
                 z[na + g] = A[na + nh + g, a] * z[a] + q[na + nh + g]
                 zlist[nz] = na + g
                 nz += 1
         check_solution(A, q, tol_lex, z, w, zlist, nz, msum)  # w = A z + q without the slip rates
         for g in range(nh):  # slip rates gT''^-: only their own row gT''^+ holds them
             a = hrow[g]
-            if state[a] == SLIDE_NEG or (state[a] == OPEN and w[na + g] < 0.0):
+            if state[a] == SLIDE_NEG or state[a] == OPEN_NEG or (state[a] == OPEN and w[na + g] < 0.0):
                 z[na + nh + g] = -w[na + g]
                 zlist[nz] = na + nh + g
                 nz += 1
@@ -163,23 +176,32 @@ def _restate(z, w, na, nh, candidate, state, tol_lex):
         g = candidate[a]
         s = state[a]
         new = s
-        if s == OPEN:
-            if w[a] < -tol:
-                new = PRESSED
-        elif z[a] < -tol:
+        if not _pressed(s) and w[a] < -tol:  # an open contact that approaches
+            new = SLIDE_NEG if s == OPEN_NEG else PRESSED
+        elif _pressed(s) and z[a] < -tol:
             new = OPEN
         elif g >= 0:
-            if s == PRESSED:  # the cone is kept exactly: no friction beyond it, none at mu = 0
-                if z[na + g] < 0.0:  # the reserve lambda_0R below 0
-                    new = SLIDE_POS
-                elif w[na + nh + g] < 0.0:  # above 2 mu lambda_N
-                    new = SLIDE_NEG
+            reserve, far, slip = z[na + g], w[na + nh + g], z[na + nh + g]
+            if s == PRESSED or s == OPEN_STICK:  # the cone is kept exactly: no friction beyond it, none at mu = 0
+                if reserve < 0.0:  # the reserve lambda_0R below 0
+                    new = SLIDE_POS if s == PRESSED else OPEN
+                elif far < 0.0:  # above the cone's far end
+                    new = SLIDE_NEG if s == PRESSED else OPEN_NEG
             elif s == SLIDE_POS:
                 if w[na + g] < -tol:
                     new = PRESSED
-            elif z[na + nh + g] < -tol:
-                new = PRESSED
+            elif s == OPEN:
+                if slip > 0.0 and far > tol:  # slips backwards while its reserve is inside the cone
+                    new = OPEN_NEG
+            elif slip < -tol:  # SLIDE_NEG, OPEN_NEG: a slip against the direction sticks
+                new = PRESSED if s == SLIDE_NEG else OPEN_STICK
         if new != s:
             state[a] = new
             changed = True
     return changed
+
+
+@jit(inline="always")
+def _pressed(s):
+    """Whether contact state s has a normal force (its normal row is an equation)."""
+    return s == PRESSED or s == SLIDE_POS or s == SLIDE_NEG

@@ -30,8 +30,10 @@ from mbds.kernel.layout import (
     MAX_PIVOTS,
     PIVOT_MAX,
     PIVOT_MIN,
+    ZERO_VELOCITY,
 )
 from mbds.kernel.active_set import recall_states, remember_states, solve_states
+from mbds.kernel.components import split_components
 from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.one_contact import solve_one_contact
 from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope
@@ -54,11 +56,28 @@ CLOSED_FRACTION = 0.01
 STATE_ROUNDS = 4
 """Rounds of state changes tried from the remembered contact states before Lemke's method
 takes over (see :func:`solve` and mbds.kernel.active_set)."""
-COMPRESSION, EXPANSION = range(2)
+COMPRESSION, EXPANSION, SOLVING = range(3)
 """Families of LCPs whose contact states are remembered apart: the compression and the
-expansion phases of impacts."""
+expansion phases of impacts; SOLVING is the memory slot where the states of a phase's groups
+are collected until the phase ends (:func:`keep_states`)."""
 LEMKE_ONLY = -1
 """The family of the contact-force LCPs, solved by Lemke's method alone (see :func:`solve`)."""
+
+
+@jit(inline="always")
+def closed(gap, settings):
+    """Whether a contact with ``gap`` (m) is closed (touching)."""
+    return gap <= CLOSED_FRACTION * settings[MAX_PEN]
+
+
+@jit(inline="always")
+def impacts(gap, rate, settings):
+    """Whether a contact with ``gap`` (m) and normal rate (m/s) starts an impact: closed and
+    approaching faster than ZeroVelocityTolerance, or slower but so that it would go beyond
+    maximumPenetration within a maximum step (else the step would shrink to minimumTimestep
+    and stay there)."""
+    return closed(gap, settings) and rate < 0.0 and (
+        rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN])
 
 
 @jit(refcount=False)
@@ -241,7 +260,7 @@ def closed_directions(nc, contacts, rows, dyn, settings, index):
     the impact and contact-force LCPs take); index: scratch for their list."""
     count = 0
     for i in range(nc):
-        if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN]:
+        if closed(contacts.gap[i], settings):
             index[count] = i
             count += 1
     contact_directions(rows, dyn, index, count)
@@ -258,30 +277,32 @@ def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, index, count):
 
 
 @jit(refcount=False)
-def solve(m, na, nh, family, vertex, edge, pb, settings, tol_lex, events, t):
-    """Solve the LCP of size m = na + 2 nh over the contacts pb.active[:na] held in
-    pb.A_flat/pb.bvec; log failures; return True when solved.
+def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, events, t):
+    """Solve the LCP of size m = na + 2 nh over the contacts active[:na] (one group of
+    mbds.kernel.components) held in pb.A_flat[at:] and pb.bvec; log failures; return True
+    when solved (the solution in pb.z, pb.w).
 
     For the impact LCPs (family COMPRESSION or EXPANSION) the contact states remembered from the
     last LCP of the same family (contacts matched by vertex and edge) are tried first
     (mbds.kernel.active_set, at most STATE_ROUNDS rounds of state changes); a point that does
     not pass Lemke's solution check is discarded and the problem is solved by lexicographic
-    Lemke. The states of the solution are remembered for the next LCP of the family. The
-    contact-force LCPs (LEMKE_ONLY) of a single contact are first solved in closed form where
-    their solution is provably unique (mbds.kernel.one_contact), so that Lemke's method could
-    find no other; all others go to Lemke directly: with several contacts the LCP may have many
-    solutions (a body resting on two vertices of one edge), and a body resting on an unstable
-    equilibrium (a polygon on a vertex) kept its symmetry to round-off with Lemke's answer and
-    drifted from it with the linear solve of the remembered states (tests/physics/test_impacts.py,
-    the ball that must not spin)."""
+    Lemke. The states of the solution are collected in memory slot SOLVING from row ``kept``
+    on, for :func:`keep_states`. The contact-force LCPs (LEMKE_ONLY) of a single contact are
+    first solved in closed form where their solution is provably unique
+    (mbds.kernel.one_contact), so that Lemke's method could find no other; all others go to
+    Lemke directly: with several contacts the LCP may have many solutions (a body resting on
+    two vertices of one edge), and a body resting on an unstable equilibrium (a polygon on a
+    vertex) kept its symmetry to round-off with Lemke's answer and drifted from it with the
+    linear solve of the remembered states (tests/physics/test_impacts.py, the ball that must
+    not spin)."""
     if m == 0:
         return True
-    A = pb.A_flat[: m * m].reshape((m, m))
+    A = pb.A_flat[at : at + m * m].reshape((m, m))
     q, z, w = pb.bvec[:m], pb.z[:m], pb.w[:m]
-    memory = pb.memory[max(family, 0)]
     solved = False
     if family >= 0 and _negative(q):  # (else z = 0: Lemke answers without a pivot)
-        recall_states(pb.active, na, vertex, edge, memory, pb.memory_count[family], q, pb.state)
+        recall_states(active, na, contacts.vertex, contacts.edge, pb.memory[family], pb.memory_count[family], q,
+                      pb.state)
         solved = solve_states(A, q, z, w, na, nh, pb.hrow, pb.state, STATE_ROUNDS, settings[PIVOT_MAX], tol_lex,
                               int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
     elif na == 1:
@@ -293,8 +314,18 @@ def solve(m, na, nh, family, vertex, edge, pb, settings, tol_lex, events, t):
             log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
             return False
     if family >= 0:
-        pb.memory_count[family] = remember_states(pb.active, na, nh, pb.hrow, vertex, edge, z, w, memory)
+        remember_states(active, na, nh, pb.hrow, contacts.vertex, contacts.edge, z, w, pb.memory[SOLVING][kept:])
     return True
+
+
+@jit(refcount=False)
+def keep_states(pb, family, count):
+    """Remember the states collected in memory slot SOLVING (rows :count) for the next LCPs
+    of ``family``: the groups solved in this phase."""
+    for r in range(count):
+        for j in range(3):
+            pb.memory[family, r, j] = pb.memory[SOLVING, r, j]
+    pb.memory_count[family] = count
 
 
 @jit(inline="always")
@@ -308,32 +339,34 @@ def _negative(q):
 
 @jit(refcount=False)
 def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
-    """Contact forces (N) of the na contacts in pb.active and the accelerations
-    acc = M^-1 (h + W lambda)."""
+    """Contact forces (N) of the na contacts in pb.active, one LCP per group of coupled
+    contacts (mbds.kernel.components: pb.active is reordered by group), and the accelerations
+    acc = M^-1 (h + W lambda); False when an LCP failed (its group's forces are then 0)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
-    if na == 0:
-        for k in range(n):
-            acc[k] = dyn.minv_h[k]
-        return True
-    nh = build_matrix(active, na, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
-                      pb.span, pb.A_flat)
-    m = na + 2 * nh
-    for a in range(na):
-        pb.bvec[a] = row_dot(rows.WN, active[a], dyn.minv_h) + rows.wbar_n[active[a]]
-    for g in range(nh):
-        c = active[pb.hrow[g]]
-        # sticking means g_T'' = -g_T' / (STICK_RELAXATION dt_max): the speed left below the stick
-        # threshold decays instead of drifting on
-        pb.bvec[na + g] = (row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
-                           + rows.gd_t[c] / (STICK_RELAXATION * settings[DT_MAX]))
-        pb.bvec[na + nh + g] = 0.0
-    ok = solve(m, na, nh, LEMKE_ONLY, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t)
-    for a in range(na):
-        lam_n[active[a]] = 0.0
-        lam_t[active[a]] = 0.0
-    if ok:
-        tangential_forces(active, na, stick, sign, rows.laws, pb.z, lam_n, lam_t)
+    ok = True
+    ng = split_components(active, na, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.group, pb.root, pb.grouped, pb.masks)
+    for g in range(ng):
+        part = active[pb.group[g] : pb.group[g + 1]]
+        k = part.shape[0]
+        nh = build_matrix(part, k, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
+                          pb.span, pb.A_flat)
+        for a in range(k):
+            pb.bvec[a] = row_dot(rows.WN, part[a], dyn.minv_h) + rows.wbar_n[part[a]]
+        for h in range(nh):
+            c = part[pb.hrow[h]]
+            # sticking means g_T'' = -g_T' / (STICK_RELAXATION dt_max): the speed left below the stick
+            # threshold decays instead of drifting on
+            pb.bvec[k + h] = (row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
+                              + rows.gd_t[c] / (STICK_RELAXATION * settings[DT_MAX]))
+            pb.bvec[k + nh + h] = 0.0
+        solved = solve(k + 2 * nh, 0, part, k, nh, LEMKE_ONLY, 0, contacts, pb, settings, tol_lex, events, t)
+        for a in range(k):
+            lam_n[part[a]] = 0.0
+            lam_t[part[a]] = 0.0
+        if solved:
+            tangential_forces(part, k, stick, sign, rows.laws, pb.z, lam_n, lam_t)
+        ok = ok and solved
     for k in range(n):
         acc[k] = dyn.minv_h[k]
     for a in range(na):
@@ -350,7 +383,7 @@ def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t,
     rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
     na = 0
     for i in range(nc):
-        if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN] and rows.gd_n[i] <= rest:
+        if closed(contacts.gap[i], settings) and rows.gd_n[i] <= rest:
             pb.active[na] = i
             na += 1
             pb.stick[i] = abs(rows.gd_t[i]) <= STICK_FRACTION * rest

@@ -1,54 +1,72 @@
-"""Impacts: Poisson's law over all closed contacts, as a compression and an expansion LCP
+"""Impacts: Poisson's law over the closed contacts of each group that holds an impacting contact
+(mbds.kernel.components), as a compression and an expansion LCP
 (see docs/theory.md and mbds.kernel.contact_problem)."""
 
 from __future__ import annotations
 
+from mbds.kernel.components import split_components
 from mbds.kernel.contact_problem import (
-    CLOSED_FRACTION,
     COMPRESSION,
     EXPANSION,
     build_matrix,
+    closed,
+    impacts,
+    keep_states,
     row_dot,
     solve,
     span_dot,
     tangential_forces,
 )
 from mbds.kernel.jit import jit
-from mbds.kernel.layout import DRIVE_WORK, LOST, MAX_PEN
+from mbds.kernel.layout import DRIVE_WORK, LOST
 from mbds.kernel.rollback import record
 
 
 @jit(refcount=False)
 def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
            point_interval, back, events, t):
-    """Compression and expansion LCPs over all closed contacts; updates u (and the relative
-    velocities rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when
-    an LCP failed: velocities are then left unchanged (compression failed) or those after
-    compression are kept (expansion failed)."""
-    active, laws, gd_n, gd_t = pb.active, rows.laws, rows.gd_n, rows.gd_t
+    """Compression and expansion LCPs over the closed contacts of each group of coupled contacts
+    (mbds.kernel.components) that holds an impacting one (:func:`impacts`); the other groups
+    are left to the contact forces of the step. Updates u (and the relative velocities
+    rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when an LCP
+    failed: velocities are then left unchanged (a compression failed) or a group whose
+    expansion failed keeps those after compression (a plastic impact)."""
+    active, group, laws, gd_n, gd_t = pb.active, pb.group, rows.laws, rows.gd_n, rows.gd_t
     WN, WT, YN, YT = rows.WN, rows.WT, dyn.YN, dyn.YT
     imp_n, imp_t, gam_n, gam_t = forces.imp_n, forces.imp_t, forces.gam_n, forces.gam_t
     lam_ne, lam_te, compression_loss = forces.lam_n, forces.lam_t, forces.compression_loss
     bvec, z = pb.bvec, pb.z
     na = 0
     for i in range(nc):
-        if contacts.gap[i] <= CLOSED_FRACTION * settings[MAX_PEN]:
+        if closed(contacts.gap[i], settings):
             active[na] = i
             na += 1
-            pb.stick[i] = True
-            pb.sign[i] = 0.0
-            gam_n[i] = gd_n[i]  # gamma_A
-            gam_t[i] = gd_t[i]
-    nh = build_matrix(active, na, pb.stick, pb.sign, laws, WN, WT, YN, YT, pb.column, pb.hrow, pb.span, pb.A_flat)
-    m = na + 2 * nh
-    for a in range(na):  # compression: b = (gamma_NA, gamma_TA, 0)
+    ng = split_components(active, na, WN, WT, YN, YT, group, pb.root, pb.grouped, pb.masks)
+    na, ng = _impacting_groups(active, group, ng, contacts.gap, gd_n, settings)
+    for a in range(na):
         c = active[a]
-        bvec[a] = gd_n[c]
-        bvec[na + a] = gd_t[c]
-        bvec[2 * na + a] = 0.0
-    if not solve(m, na, nh, COMPRESSION, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t):
-        return False
-    tangential_forces(active, na, pb.stick, pb.sign, laws, z, imp_n, imp_t)
+        pb.stick[c] = True
+        pb.sign[c] = 0.0
+        gam_n[c] = gd_n[c]  # gamma_A
+        gam_t[c] = gd_t[c]
+    # compression: b = (gamma_NA, gamma_TA, 0); each group's matrix stays in A_flat for the expansion
+    at = 0
+    for g in range(ng):
+        s = group[g]
+        part = active[s : group[g + 1]]
+        k = part.shape[0]
+        build_matrix(part, k, pb.stick, pb.sign, laws, WN, WT, YN, YT, pb.column, pb.hrow, pb.span[s:],
+                     pb.A_flat[at:])
+        for a in range(k):
+            c = part[a]
+            bvec[a] = gd_n[c]
+            bvec[k + a] = gd_t[c]
+            bvec[2 * k + a] = 0.0
+        if not solve(3 * k, at, part, k, k, COMPRESSION, s, contacts, pb, settings, tol_lex, events, t):
+            return False
+        tangential_forces(part, k, pb.stick, pb.sign, laws, z, imp_n, imp_t)
+        at += 9 * k * k
+    keep_states(pb, COMPRESSION, na)
     _apply_impulses(active, na, imp_n, imp_t, YN, YT, u)
     _relative_velocities(active, na, rows, u)
     # expansion: start from eN Lambda_NC (with its -mu tangential partner) and eT Lambda_TC;
@@ -57,26 +75,40 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
         c = active[a]
         lam_ne[c] = laws[c, 1] * imp_n[c]
         lam_te[c] = laws[c, 2] * imp_t[c] - laws[c, 0] * lam_ne[c]
-    for a in range(na):
-        c = active[a]
-        sn = gd_n[c]
-        st = gd_t[c]
-        for b in range(na):
-            e = active[b]
-            sn += span_dot(WN, c, YN, e, pb.span, a) * lam_ne[e] + span_dot(WN, c, YT, e, pb.span, a) * lam_te[e]
-            st += span_dot(WT, c, YN, e, pb.span, a) * lam_ne[e] + span_dot(WT, c, YT, e, pb.span, a) * lam_te[e]
-        bvec[a] = sn
-        bvec[na + a] = st
-        bvec[2 * na + a] = 2.0 * laws[c, 0] * lam_ne[c]
-    expanded = solve(m, na, nh, EXPANSION, contacts.vertex, contacts.edge, pb, settings, tol_lex, events, t)
-    for a in range(na):
-        c = active[a]
-        if expanded:
-            lam_ne[c] += z[a]
-            lam_te[c] = laws[c, 2] * imp_t[c] + z[na + a] - laws[c, 0] * lam_ne[c]
-        else:  # keep the compression result: a plastic impact
-            lam_ne[c] = 0.0
-            lam_te[c] = 0.0
+    at = 0
+    expanded = True
+    kept = 0
+    for g in range(ng):
+        s = group[g]
+        part = active[s : group[g + 1]]
+        k = part.shape[0]
+        for a in range(k):
+            c = part[a]
+            sn = gd_n[c]
+            st = gd_t[c]
+            for b in range(k):
+                e = part[b]
+                sn += (span_dot(WN, c, YN, e, pb.span, s + a) * lam_ne[e]
+                       + span_dot(WN, c, YT, e, pb.span, s + a) * lam_te[e])
+                st += (span_dot(WT, c, YN, e, pb.span, s + a) * lam_ne[e]
+                       + span_dot(WT, c, YT, e, pb.span, s + a) * lam_te[e])
+            bvec[a] = sn
+            bvec[k + a] = st
+            bvec[2 * k + a] = 2.0 * laws[c, 0] * lam_ne[c]
+        solved = solve(3 * k, at, part, k, k, EXPANSION, kept, contacts, pb, settings, tol_lex, events, t)
+        for a in range(k):
+            c = part[a]
+            if solved:
+                lam_ne[c] += z[a]
+                lam_te[c] = laws[c, 2] * imp_t[c] + z[k + a] - laws[c, 0] * lam_ne[c]
+            else:  # keep the compression result: a plastic impact
+                lam_ne[c] = 0.0
+                lam_te[c] = 0.0
+        if solved:
+            kept += k
+        expanded = expanded and solved
+        at += 9 * k * k
+    keep_states(pb, EXPANSION, kept)
     lost = 0.0
     drive = 0.0
     for a in range(na):  # loss of the compression phase; then gam_* <- gamma_C
@@ -96,6 +128,27 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive
     return expanded
+
+
+@jit(refcount=False)
+def _impacting_groups(active, group, ng, gap, gd_n, settings):
+    """Keep the groups active[group[g]:group[g + 1]] that hold an impacting contact, moved to
+    the front in their order; return (their number of contacts, their number)."""
+    na = 0
+    kept = 0
+    for g in range(ng):
+        start, end = group[g], group[g + 1]
+        hit = False
+        for a in range(start, end):
+            hit = hit or impacts(gap[active[a]], gd_n[active[a]], settings)
+        if hit:
+            group[kept] = na
+            for a in range(start, end):
+                active[na] = active[a]
+                na += 1
+            kept += 1
+    group[kept] = na
+    return na, kept
 
 
 @jit(refcount=False)

@@ -13,7 +13,8 @@ Each step, at (q, u, t):
    state and the step was longer than ``minimumTimestep``, it is rejected and retried from its
    start with half the step;
 4. closed contacts (gap <= 0) approaching faster than ``ZeroVelocityTolerance`` start an impact:
-   a compression and an expansion LCP over all closed contacts change the velocities, and the
+   a compression and an expansion LCP over the closed contacts of its group of coupled contacts
+   (mbds.kernel.components) change the velocities, and the
    body velocities, contact rows, laws and h(q, u, t) are computed again from the new ones;
 5. closed contacts that do not separate faster than the rest velocity (``maximumPenetration /
    maximumTimestep``) form the acceleration LCP with Coulomb friction; contacts slower than the
@@ -33,14 +34,15 @@ from __future__ import annotations
 import numpy as np
 
 from mbds.kernel.contact_problem import (
-    CLOSED_FRACTION,
     REST_FRACTION,
     accelerations,
+    closed,
     closed_directions,
     contact_forces,
     contact_laws,
     dynamics,
     free_dynamics,
+    impacts,
     row_dot,
 )
 from mbds.kernel.detection import (
@@ -88,7 +90,6 @@ from mbds.kernel.layout import (
     SAMPLE_EACH_STEP,
     SAMPLE_EVERY,
     STEPS,
-    ZERO_VELOCITY,
     T,
 )
 from mbds.kernel.motion import body_motion, detection_margins, reach_limit
@@ -186,19 +187,14 @@ def advance(
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
         closed_directions(nc, contacts, rows, dyn, settings, pb.active)
-        # --- 4: impact
-        # a closed contact impacts when it approaches faster than ZeroVelocityTolerance, or when a
-        # slower approach would take it beyond maximumPenetration within a maximum step (else the
-        # step would shrink to minimumTimestep and stay there)
+        # --- 4: impact (see contact_problem.impacts)
         impacting = False
         counted = False
         rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for i in range(nc):
-            gap, rate = contacts.gap[i], rows.gd_n[i]
-            if gap <= CLOSED_FRACTION * settings[MAX_PEN] and rate < 0.0 and (
-                    rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN]):
+            if impacts(contacts.gap[i], rows.gd_n[i], settings):
                 impacting = True
-                counted = counted or rate < -rest
+                counted = counted or rows.gd_n[i] < -rest
         if counted:
             clock[IMPACTS] += 1.0
         solved = True
@@ -257,7 +253,7 @@ def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
     back.cap[0] = np.inf
     dt = reach_limit(model, bodies.motion, settings, bodies.margin, dt)
     for i in range(nc):
-        if gap[i] > CLOSED_FRACTION * settings[MAX_PEN]:  # open: reach at most half maxPen
+        if not closed(gap[i], settings):  # open: reach at most half maxPen
             accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]
             dt = min(dt, _time_to_reach(gap[i] + 0.5 * settings[MAX_PEN], rows.gd_n[i], accel))
     for a in range(na):  # a sliding contact stops at the end of the step, not beyond

@@ -7,7 +7,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mbds.kernel.active_set import OPEN, PRESSED, SLIDE_NEG, SLIDE_POS, recall_states, remember_states, solve_states
+from mbds.kernel.active_set import (
+    OPEN,
+    OPEN_NEG,
+    OPEN_STICK,
+    PRESSED,
+    SLIDE_NEG,
+    SLIDE_POS,
+    recall_states,
+    remember_states,
+    solve_states,
+)
 from mbds.kernel.lcp import SOLVED, lcp_workspace, lemke
 from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope, gauss_solve
 from tests.kernel.test_lcp import friction_lcp, residual
@@ -75,14 +85,55 @@ def test_fast_path_mostly_hits_from_the_lemke_states():
     assert same >= 0.9 * hits
 
 
+def expansion_lcp(rng, c):
+    """A friction LCP of the expansion phase of an impact with c contacts: the third block of q
+    is the cone 2 mu Lambda_N of the impulses so far (mbds.kernel.impact), positive for most
+    contacts, so a contact may take a tangential increment without a normal one."""
+    M, q = friction_lcp(rng, c, 0, c)
+    q[c:2 * c] += 1e-3 * rng.standard_normal(c)  # no exact ties
+    impulses = rng.uniform(0.0, 1.0, c) * (rng.random(c) < 0.8)
+    q[2 * c:] = M[2 * c:, :c].diagonal() * impulses  # 2 mu Lambda_N
+    return M, q
+
+
+def test_fast_path_hits_expansion_problems():
+    """The expansion LCP of an impact (tangential reserves already in the cone): from the
+    states of Lemke's solution the fast path answers at least 80 % at once, with Lemke's
+    impulses, and among them contacts that take a tangential increment without a normal one
+    (states OPEN_STICK and OPEN_NEG, without which such problems always fell back to Lemke)."""
+    hits = same = tried = 0
+    seen = set()
+    for seed in range(300):
+        rng = np.random.default_rng(5000 + seed)
+        c = int(rng.integers(1, 5))
+        M, q = expansion_lcp(rng, c)
+        status, z_lemke, state = lemke_states(M, q, c)
+        if status != SOLVED:
+            continue
+        tried += 1
+        seen.update(int(s) for s in state)
+        ok, z, w = states_solution(M, q, c, state.copy(), rounds=0)
+        if ok:
+            hits += 1
+            assert residual(M, q, z, w) <= 1e-8
+            same += np.allclose(z[:2 * c], z_lemke[:2 * c], rtol=1e-6, atol=1e-9 * np.abs(z_lemke).max())
+    assert {OPEN_STICK, OPEN_NEG} <= seen
+    assert tried >= 250
+    assert hits >= 0.8 * tried
+    assert same >= 0.9 * hits
+
+
 @pytest.mark.parametrize("seed", range(40))
 def test_cold_guesses_never_return_a_wrong_answer(seed):
     """From arbitrary states (wrong ones included) an accepted answer still solves the LCP."""
     rng = np.random.default_rng(seed)
     c = int(rng.integers(1, 7))
     M, q = friction_lcp(rng, c, int(rng.integers(0, 2)), int(rng.integers(1, 4)))
+    c = len(q) // 3  # with the duplicated contacts
+    if seed % 2:  # an expansion LCP: impulses already in the cone
+        q[2 * c:] = rng.uniform(0.0, 1.0, c) * M[2 * c:, :c].diagonal()
     for _ in range(5):
-        state = rng.choice([OPEN, PRESSED, SLIDE_POS, SLIDE_NEG], c).astype(np.int64)
+        state = rng.choice([OPEN, PRESSED, SLIDE_POS, SLIDE_NEG, OPEN_STICK, OPEN_NEG], c).astype(np.int64)
         ok, z, w = states_solution(M, q, c, state)
         if ok:
             assert residual(M, q, z, w) <= 1e-8
