@@ -11,6 +11,7 @@ because whether its process runs cannot be seen from here; the message says how 
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import os
 import socket
@@ -48,6 +49,10 @@ def is_stale(info: dict) -> bool:
     return False
 
 
+NO_HARD_LINKS = {errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK}
+"""Errors of os.link on a file system that does not make hard links here."""
+
+
 @contextlib.contextmanager
 def folder_lock(folder: str | Path, command: str):
     """Hold the lock of ``folder`` (which must exist) while the block runs; ModelError when
@@ -80,13 +85,21 @@ def _created(path: Path, info: dict) -> bool:
     """Create the lock ``path`` holding ``info``, whole or not at all: written to a hidden file
     beside it and linked to its name (FileExistsError when a lock is there), so that a process
     killed meanwhile leaves no empty lock, which nobody could tell stale. False when that file
-    was removed before the link (a run clears its folder's ``.*.tmp``): try again."""
+    was removed before the link (a run clears its folder's ``.*.tmp``): try again. On a file
+    system without hard links the lock is created exclusively and written in place."""
     temporary = path.with_name(f"{path.name}.{socket.gethostname()}.{os.getpid()}.tmp")
     temporary.write_text(json.dumps(info), encoding="utf-8")
     try:
         os.link(temporary, path)
     except FileNotFoundError:
         return False
+    except FileExistsError:
+        raise
+    except OSError as exc:
+        if exc.errno not in NO_HARD_LINKS:
+            raise
+        with open(path, "x", encoding="utf-8") as file:
+            json.dump(info, file)
     finally:
         temporary.unlink(missing_ok=True)
     return True

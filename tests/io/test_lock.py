@@ -1,6 +1,7 @@
 """One writer per folder: a second command on a locked folder stops with exit 2 naming the
 holder; a lock left by a killed process is taken over; campaigns started twice at once."""
 
+import errno
 import json
 import os
 import signal
@@ -55,6 +56,21 @@ def test_a_process_killed_while_taking_the_lock_leaves_no_lock(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == [f"{LOCK_FILE}.{socket.gethostname()}.{killed.pid}.tmp"]
     with folder_lock(tmp_path, "test"):
         assert holder(tmp_path)["command"] == "test"
+
+
+def test_a_file_system_without_hard_links_still_gets_a_whole_lock(tmp_path, monkeypatch):
+    """Where os.link is refused (EPERM, as on some network file systems), the lock is created
+    exclusively and written in place; a second command still finds it."""
+    def refused(source, target):
+        raise PermissionError(errno.EPERM, "hard links not supported", str(target))
+
+    monkeypatch.setattr(os, "link", refused)
+    with folder_lock(tmp_path, "first"):
+        assert holder(tmp_path)["command"] == "first"
+        assert [p.name for p in tmp_path.iterdir()] == [LOCK_FILE]
+        with pytest.raises(ModelError), folder_lock(tmp_path, "second"):
+            pass
+    assert holder(tmp_path) is None
 
 
 def test_a_lock_of_another_host_is_never_taken_over(tmp_path):
