@@ -174,11 +174,11 @@ class FreeBody:
 
 def write_free_bodies(folder: Path, bodies: list[FreeBody], pairs: list[tuple[str, str]], *, floor: bool,
                       gravity: float, friction: float, restitution: float, dt_max: float, max_penetration: float,
-                      break_time: float) -> Path:
+                      break_time: float, world: dict[str, str] | None = None) -> Path:
     """Write a model of free bodies under gravity (0, -gravity) (m/s²), with the fixed floor
     (named ``floor``) when asked; the contact pairs (body names) have friction c'mu and normal
-    restitution c'e; history every 10 maximum steps. Models with the same bodies, pairs and floor
-    share one compiled stepper."""
+    restitution c'e; history every 10 maximum steps; ``world``: more keys of the world file's
+    [main]. Models with the same bodies, pairs and floor share one compiled stepper."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     names = [body.name for body in bodies]
@@ -206,6 +206,7 @@ def write_free_bodies(folder: Path, bodies: list[FreeBody], pairs: list[tuple[st
                 "numberOfGeneralizedCoordinates": str(n), "minimumTimestep": "1e-10",
                 "maximumTimestep": _num(dt_max), "maximumPenetration": _num(max_penetration),
                 "writeToHistoryMultipleOfMaximumTimestep": "10", "breakTime": _num(break_time),
+                **(world or {}),
             },
             "bodies": {f"body{k + 1}": f"{name}.bdy" for k, name in enumerate(names + ["floor"] * floor)},
         }),
