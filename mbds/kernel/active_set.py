@@ -1,18 +1,17 @@
 """A guessed active set for the impact LCPs (the form of mbds.kernel.contact_problem.build_matrix),
 tried before Lemke's method.
 
-Each contact of an LCP is in one of six states. Four have a normal force: PRESSED (a stick
+Each contact of an LCP is in one of six states. Three have a normal force: PRESSED (a stick
 candidate then sticks), SLIDE_POS (sliding with gT' > 0: lambda_T = -mu lambda_N) and SLIDE_NEG
-(gT' < 0: lambda_T = +mu lambda_N), and OPEN has none (nor a tangential reserve; a slip rate
-where its tangential row needs one). The expansion LCP of an impact starts from impulses already
-in the cone (the third block of q, 2 mu Lambda_N, is positive), so a contact without a normal
+(gT' < 0: lambda_T = +mu lambda_N); OPEN has none (nor a tangential reserve; a slip rate where
+its tangential row needs one). The expansion LCP of an impact starts from impulses already in
+the cone (the third block of q, 2 mu Lambda_N, is positive), so a contact without a normal
 increment may still hold a tangential one: OPEN_STICK (its reserve lambda_0R an unknown, the
 contact sticks) and OPEN_NEG (its reserve at the cone's far end, lambda_0R = q_L, sliding
-backwards). Given the states, the LCP reduces to
-a linear system over the normal forces of the pressed contacts and the tangential reserves
-lambda_0R of the sticking ones (rows gN'' = 0 and gT''^+ = 0 of those contacts); the slip rates
-gT''^- of SLIDE_NEG, OPEN_NEG and of open contacts that move backwards follow from their own rows. If the
-solution is feasible, the full LCP vector z is assembled and must pass Lemke's solution check
+backwards). Given the states, the LCP reduces to a linear system over the normal forces of the
+pressed contacts and the tangential reserves lambda_0R of the sticking ones (rows gN'' = 0 and
+gT''^+ = 0 of those contacts); the slip rates gT''^- of SLIDE_NEG, OPEN_NEG and of open contacts
+that move backwards follow from their own rows. If the solution is feasible, the full LCP vector z is assembled and must pass Lemke's solution check
 (mbds.kernel.lcp.check_solution) on the original data: only a solution of the same LCP is
 accepted. Otherwise the infeasible contacts change state (a negative normal force opens, an
 approaching open contact is pressed, a tangential reserve outside its cone slides, a slip
@@ -58,12 +57,13 @@ def recall_states(active, na, vertex, edge, memory, count, bvec, state):
 @jit(refcount=False)
 def remember_states(active, na, nh, hrow, vertex, edge, z, w, memory):
     """Store the states of the solution z, w of an LCP over the contacts active[:na] (nh stick
-    candidates at hrow) in memory (rows: vertex, edge, state); return their count.
+    candidates at hrow) in memory[:na] (rows: vertex, edge, state).
 
     A pressed stick candidate whose reserve lambda_0R is exactly 0 (non-basic in Lemke's answer)
     is remembered as sliding forwards, one whose other reserve lambda_0L (w) is zero (AT_BOUND) as
-    sliding backwards (OPEN_NEG without a normal increment), even where it does not slip: two sticking contacts of one body on one
-    line make the system of the states singular, one of them at a bound of the cone does not."""
+    sliding backwards (OPEN_NEG without a normal increment), even where it does not slip: two
+    sticking contacts of one body on one line make the system of the states singular, one of them
+    at a bound of the cone does not."""
     g = 0
     for a in range(na):
         c = active[a]
@@ -81,7 +81,6 @@ def remember_states(active, na, nh, hrow, vertex, edge, z, w, memory):
         memory[a, 0] = vertex[c]
         memory[a, 1] = edge[c]
         memory[a, 2] = s
-    return na
 
 
 @jit(refcount=False)
@@ -182,7 +181,8 @@ def _restate(z, w, na, nh, candidate, state, tol_lex):
             new = OPEN
         elif g >= 0:
             reserve, far, slip = z[na + g], w[na + nh + g], z[na + nh + g]
-            if s == PRESSED or s == OPEN_STICK:  # the cone is kept exactly: no friction beyond it, none at mu = 0
+            # the cone is kept exactly: no friction beyond it, none at mu = 0
+            if s == PRESSED or s == OPEN_STICK:
                 if reserve < 0.0:  # the reserve lambda_0R below 0
                     new = SLIDE_POS if s == PRESSED else OPEN
                 elif far < 0.0:  # above the cone's far end

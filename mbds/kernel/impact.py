@@ -1,6 +1,6 @@
 """Impacts: Poisson's law over the closed contacts of each group that holds an impacting contact
-(mbds.kernel.components), as a compression and an expansion LCP
-(see docs/theory.md and mbds.kernel.contact_problem)."""
+(mbds.kernel.components), as a compression and an expansion LCP (see docs/theory.md and
+mbds.kernel.contact_problem)."""
 
 from __future__ import annotations
 

@@ -70,9 +70,10 @@ Problem = namedtuple(
     "column hrow span active stick sign group root grouped masks A_flat bvec z w state memory memory_count fwork iwork",
 )
 """The LCPs being set up and solved: contact set (active, stick, sign), its independent groups
-(mbds.kernel.components: bounds, scratch and the nonzero columns of W and Y rows), matrices, vectors, the contact states
-(mbds.kernel.active_set) being tried and those remembered for the 2 impact LCPs (rows: vertex,
-edge, state; a third slot collects those of the groups being solved), scratch."""
+(mbds.kernel.components: bounds, scratch and the nonzero columns of W and Y rows), matrices,
+vectors, the contact states (mbds.kernel.active_set) being tried and those remembered for the 2
+impact LCPs (rows: vertex, edge, state; a third slot collects those of the groups being solved),
+scratch."""
 
 Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t compression_loss a1 a2 q_star u_star")
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a

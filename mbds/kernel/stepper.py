@@ -14,8 +14,8 @@ Each step, at (q, u, t):
    start with half the step;
 4. closed contacts (gap <= 0) approaching faster than ``ZeroVelocityTolerance`` start an impact:
    a compression and an expansion LCP over the closed contacts of its group of coupled contacts
-   (mbds.kernel.components) change the velocities, and the
-   body velocities, contact rows, laws and h(q, u, t) are computed again from the new ones;
+   (mbds.kernel.components) change the velocities, and the body velocities, contact rows, laws
+   and h(q, u, t) are computed again from the new ones;
 5. closed contacts that do not separate faster than the rest velocity (``maximumPenetration /
    maximumTimestep``) form the acceleration LCP with Coulomb friction; contacts slower than the
    rest velocity tangentially are stick candidates, the others slide;

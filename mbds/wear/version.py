@@ -76,9 +76,11 @@ def wear_variables(plan: WearPlan, files: ModelFiles) -> list[Variable]:
         dim = (f"{wear.body}_point",)
         data.append(Variable(dim[0], dim, np.asarray(wear.points), {}, coordinate=True))
         columns = [("loss", wear.loss, "J", f"lost work used for reshaping {wear.body}"),
-                   ("displacement", wear.displacement, "m", f"displacement of the points of {wear.body} along their direction")]
+                   ("displacement", wear.displacement, "m",
+                    f"displacement of the points of {wear.body} along their direction")]
         for axis, label in enumerate("xy"):
-            columns += [(f"direction_{label}", wear.direction[:, axis], "1", f"reshaping direction, {label} (body frame)"),
+            columns += [(f"direction_{label}", wear.direction[:, axis], "1",
+                         f"reshaping direction, {label} (body frame)"),
                         (f"old_{label}", old[wear.points, axis], "m", f"{label} before reshaping (body frame)"),
                         (f"new_{label}", wear.shape[wear.points, axis], "m", f"{label} after reshaping (body frame)")]
         data += [Variable(f"{wear.body}_{name}", dim, np.asarray(values), {"units": units, "long_name": long_name})
