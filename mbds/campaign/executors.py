@@ -164,17 +164,15 @@ class Ranks:
         for rank in range(1, self._comm.Get_size()):
             self._comm.send(first, dest=rank, tag=LOAD)
 
-    def close(self, succeeded: bool = False) -> None:
-        """Release the workers; ``succeeded``: the command exits with 0, so they may leave
-        without the interpreter's teardown (:func:`serve` returns it to them)."""
+    def close(self) -> None:
+        """Release the workers."""
         for rank in range(1, self._comm.Get_size()):
-            self._comm.send(succeeded, dest=rank, tag=QUIT)
+            self._comm.send(None, dest=rank, tag=QUIT)
 
 
-def serve(comm, stopping) -> bool:
-    """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit; whether
-    rank 0 said the command succeeded. A run stops early when ``stopping()`` is true (a signal
-    to this process) or rank 0 says so."""
+def serve(comm, stopping) -> None:
+    """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit. A run
+    stops early when ``stopping()`` is true (a signal to this process) or rank 0 says so."""
     from mpi4py import MPI
 
     status = MPI.Status()
@@ -189,7 +187,7 @@ def serve(comm, stopping) -> bool:
             delay = min(2 * delay, POLL)
         message = comm.recv(source=0, tag=status.Get_tag())
         if status.Get_tag() == QUIT:
-            return bool(message)
+            return
         if status.Get_tag() == PREPARE:
             prepare_worker(*message)
         elif status.Get_tag() == LOAD:

@@ -160,13 +160,7 @@ def run(
         code = exc.exit_code
     finally:
         if ranks is not None:
-            ranks.close(succeeded=code == 0)
-    if code and comm is not None:
-        # The workers have quit. Finalizing here ends MPI cleanly: a non-zero exit would make
-        # `python -m mpi4py` call MPI_Abort, which reports an abort for a mere stop or failure.
-        from mpi4py import MPI
-
-        MPI.Finalize()
+            ranks.close()
     if code:
         raise typer.Exit(code)
 

@@ -4,16 +4,15 @@ A worker rank of ``mbds-campaign run JOB`` under an MPI launcher (rank > 0 in th
 environment) serves tasks at once, without importing the command-line parser (typer, rich):
 its arguments are rank 0's to read. Every other use goes to :data:`mbds.cli.campaign.app`.
 
-When the command is over, a process outside MPI leaves without the interpreter's teardown
-(0.8-1.1 s once numba, sympy and xarray are loaded, measured): it flushes its streams and exits
-with the command's code (:func:`_leave`). An MPI rank exits normally: with ``os._exit`` after
-``MPI_Finalize``, MPICH's mpiexec sometimes reported 0 for a rank 0 that exited with 3.
+When the command is over, every process, MPI rank or not, leaves without the interpreter's
+teardown (0.8-1.1 s once numba, sympy and xarray are loaded, measured): it flushes its streams,
+ends MPI where it began, and exits with the command's code through C's ``exit``
+(:func:`_leave`, :func:`mbds.cli.mpi_world.leave_process`).
 """
 
 from __future__ import annotations
 
 import logging
-import os
 import sys
 
 HELP = ("--help", "-h")
@@ -45,15 +44,15 @@ def main() -> None:
 
 
 def _leave(code) -> None:
-    """Exit with ``code`` (as SystemExit reads it) once the streams are flushed; skip the
-    interpreter's teardown unless this process uses MPI."""
+    """Exit with ``code`` (as SystemExit reads it) once the streams are flushed and MPI, if this
+    process began it, is ended; skip the interpreter's teardown."""
+    from mbds.cli.mpi_world import leave_process
+
     status = code if isinstance(code, int) else (0 if code is None else 1)
     if code is not None and not isinstance(code, int):
         print(code, file=sys.stderr)
     logging.shutdown()
-    sys.stdout.flush()
-    sys.stderr.flush()
     mpi = sys.modules.get("mpi4py.MPI")
-    if mpi is not None and mpi.Is_initialized():
-        raise SystemExit(status)  # MPI's launcher must see the exit of a finished interpreter
-    os._exit(status)
+    if mpi is not None and mpi.Is_initialized() and not mpi.Is_finalized():
+        mpi.Finalize()
+    leave_process(status)

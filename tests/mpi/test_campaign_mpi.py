@@ -43,7 +43,7 @@ def launch(job, how):
     else:
         command += args
     done = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr
+    assert done.returncode == 0, done.stdout + done.stderr  # mpiexec reports a killed rank on stdout
     return mbds.open_campaign(collect(expand(job)))
 
 

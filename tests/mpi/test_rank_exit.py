@@ -1,0 +1,43 @@
+"""How the ranks of ``mbds-campaign run`` leave: a worker that has finished must not take rank 0
+down with it, and mpiexec must report rank 0's exit code.
+
+MPICH's Hydra proxy kills every rank still running (SIGKILL) when one closes its link to the
+process manager without announcing its end; MPICH announces it from a C exit handler. The
+script below runs the workers' real path (serve until told to quit, then leave) while rank 0,
+after releasing them and ending MPI, takes a while over its own shut-down."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+MPIEXEC = Path(sys.executable).parent / "mpiexec"
+SCRIPT = """
+import sys, time
+from pathlib import Path
+from mpi4py import MPI
+from mbds.campaign.executors import Ranks
+from mbds.cli.campaign_entry import _leave
+from mbds.cli.mpi_world import serve_worker
+
+comm = MPI.COMM_WORLD
+if comm.Get_rank() > 0:
+    serve_worker(comm)
+    _leave(0)
+Ranks(comm).close()
+MPI.Finalize()
+time.sleep(1.0)  # rank 0's shut-down, still under way when the workers have gone
+Path(sys.argv[1]).write_text("rank 0 lived to the end")
+_leave(3)
+"""
+
+
+@pytest.mark.mpi
+def test_rank_0_outlives_the_workers_and_mpiexec_reports_its_exit_code(tmp_path):
+    script, mark = tmp_path / "ranks.py", tmp_path / "mark"
+    script.write_text(SCRIPT)
+    done = subprocess.run([str(MPIEXEC), "-n", "3", sys.executable, str(script), str(mark)],
+                          capture_output=True, text=True, timeout=120)
+    assert mark.exists(), done.stdout + done.stderr  # not killed in its shut-down
+    assert done.returncode == 3, done.stdout + done.stderr
