@@ -4,8 +4,9 @@ without sympy").
 For each of ``--repeat`` fresh copies of the campaign folder of JOB (default: the README's
 ``campaigns/wearballs/wearballs_campaign.job``), a new process imports what a worker rank imports
 before it serves (mpi4py and ``mbds.campaign.executors``), then what the plan's task kinds need
-(``import_for``), loads the first variant's compiled model (``load_first``) and runs the first
-chain's prepare task and first run; it prints the seconds of each part, the heavy packages it
+(``import_for``), loads the first variant's compiled model as a worker does (``load_first``,
+which then freezes what the process holds out of the garbage collector's sweeps) and runs the
+first chain's prepare task and first run; it prints the seconds of each part, the heavy packages it
 imported, and the process's wall time. The plan is expanded in another process first (rank 0's
 work). Use a cache warmed by one run of the campaign (``MBDS_CACHE_DIR``) to see the steady state.
 
@@ -30,7 +31,7 @@ WORKER = """
 import sys, time
 begun = time.perf_counter()
 import mpi4py, mbds.campaign.executors
-from mbds.campaign.structures import load_first
+from mbds.campaign.executors import _load_first as load_first
 from mbds.campaign.tasks import import_for, run_task
 path = time.perf_counter()
 import pickle

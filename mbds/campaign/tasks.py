@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import sys
 import time
 import warnings
 from collections.abc import Callable
@@ -81,6 +82,32 @@ def import_for(kinds) -> None:
         performer(kind)  # a kind registered by another module: that module is imported now
         for module in MODULES[kind]:
             importlib.import_module(module)
+    if "numba" in sys.modules:
+        _numba_numpy_support()
+
+
+BLAS_CHECK = "scipy.linalg.cython_blas"
+"""The module whose import numba's numpy support tries, to learn whether scipy's BLAS is there."""
+
+
+def _numba_numpy_support() -> None:
+    """Import numba's numpy support (``numba.np.arraymath``, which numba loads before it runs or
+    loads any compiled function) without letting it import scipy.
+
+    At import it checks whether scipy's BLAS can be imported, and that import is scipy.linalg:
+    0.15-0.35 s of a worker's start-up (measured). The answer only chooses how numba *compiles*
+    the inner products of ``np.cov`` and ``np.corrcoef`` (a loop instead of BLAS); mbds's compiled
+    code uses neither, and a worker runs code compiled by the warm-up. The check is told that the
+    module is missing; afterwards scipy imports as usual (``np.dot`` in a function compiled later
+    still finds its BLAS)."""
+    if "numba.np.arraymath" in sys.modules or BLAS_CHECK in sys.modules:
+        return
+    sys.modules[BLAS_CHECK] = None  # import of it raises ImportError, without importing scipy
+    try:
+        importlib.import_module("numba.np.arraymath")
+    finally:
+        if sys.modules.get(BLAS_CHECK, "") is None:
+            del sys.modules[BLAS_CHECK]
 
 
 def run_task(task: Task, stop: Callable[[], bool] | None = None) -> dict:

@@ -53,6 +53,34 @@ def test_workers_import_what_tasks_need_when_told():
                                    "numba", "netCDF4"]
 
 
+def test_numbas_numpy_support_is_loaded_without_scipy_linalg_and_blas_still_works():
+    """numba's numpy support checks at import whether scipy's BLAS imports (scipy.linalg,
+    0.15-0.35 s of a worker's start-up): importing for a run loads that support without it. A
+    function compiled afterwards in the same process still calls BLAS through np.dot (the value
+    against numpy's own), and scipy.linalg then imports as usual."""
+    code = ("import sys\nfrom mbds.campaign.tasks import import_for\nimport_for(['prepare', 'run', 'wear'])\n"
+            "print('numba.np.arraymath' in sys.modules, 'scipy.linalg' in sys.modules)\n"
+            "import numba, numpy as np\n"
+            "dot = numba.njit(lambda a, b: np.dot(a, b))\n"
+            "a, b = np.arange(1.0, 7.0).reshape(2, 3), np.arange(2.0, 8.0).reshape(3, 2)\n"
+            "print(np.array_equal(dot(a, b), a @ b), 'scipy.linalg' in sys.modules)")
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert done.stdout.split() == ["True", "False", "True", "True"]
+
+
+def test_a_worker_freezes_what_it_holds_after_loading_the_first_model(tmp_path):
+    """The objects a worker holds once it has loaded the first model (imports, compiled code)
+    live as long as it does: they are frozen out of the garbage collector's sweeps, even when the
+    model fails to load (the prepare task reports that)."""
+    code = ("import gc, sys\nfrom mbds.campaign.executors import _load_first\n"
+            "_load_first(sys.argv[1], None)\nprint(gc.get_freeze_count() > 10000)")
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path / "none.wld")], capture_output=True, text=True,
+                          env=env, check=True)
+    assert done.stdout.split() == ["True"]
+
+
 def test_what_tasks_need_is_not_sympy():
     """A task of a model loaded before takes what sympy gave from the cache's record
     (tests/campaign/test_known_models.py): importing for every task kind loads no sympy."""
