@@ -50,8 +50,9 @@ cores allow (N + 1 ranks); for the other N, the measured task times are replayed
 start-up and shut-down of the measured run are added. It prints N, wall, parallel efficiency
 (wall(1) / (N wall(N))), whether the row was measured or replayed, and the split of the time
 lost against a perfect speed-up: start-up and shut-down, idle workers (the tail), round trips,
-and the extra time of each worker's first run over the mean run (measured; for replayed rows
-the 1-worker run's, charged in the replay to every worker's first run). The same replay with
+and the extra time of each worker's first run over what the run takes later (its chain's next
+version's run scaled by the other chains' ratio of the two versions' runs; measured, and for
+replayed rows the 1-worker run's, charged in the replay to every worker's first run). The same replay with
 tasks handed out in plan order shows what ordering by remaining work gains.
 
 Opening mode, ``--opening [--repeat 5]``: only the opening figure. The campaign above runs once
@@ -173,16 +174,35 @@ def _firsts(tasks: dict, start: dict) -> set[str]:
 
 
 def _first_task_extra(tasks: dict, start: dict) -> float:
-    """Mean extra wall time (s) of each worker's first run task over the mean of the other runs
-    of the same version (``*/000/run`` for a first run of version 000: the versions' runs differ
-    as the bodies wear)."""
+    """Mean extra wall time (s) of each worker's first run task over what that run would take
+    later in the campaign.
+
+    The chains' runs differ (their variants, and the versions as the bodies wear), so the first
+    run is compared with its own chain: its chain's next version's run, scaled by how the other
+    chains' first two versions' runs compare (the median of their ratios). A plan of one version
+    compares it with the other chains' runs of the same version instead."""
     runs = {k: e for k, e in tasks.items() if k.endswith("/run")}
     firsts = []
     for rank in {e.get("rank") for e in runs.values()} - {None}:
         first = min((k for k, e in runs.items() if e.get("rank") == rank), key=start.get)
-        others = [e["wall"] for k, e in runs.items() if k != first and _version(k) == _version(first)]
-        firsts.append(runs[first]["wall"] - (np.mean(others) if others else runs[first]["wall"]))
+        firsts.append(runs[first]["wall"] - _expected_run(first, runs))
     return float(np.mean(firsts)) if firsts else 0.0
+
+
+def _expected_run(first: str, runs: dict) -> float:
+    """The wall time (s) the run task ``first`` would take if it were not a worker's first (see
+    :func:`_first_task_extra`)."""
+    chain, version = first.rsplit("/", 2)[0], _version(first)
+    later = sorted(k for k in runs if k.startswith(chain + "/") and _version(k) > version)
+    if later:
+        following = _version(later[0])
+        ratios = [runs[k]["wall"] / runs[f"{c}/{following}/run"]["wall"]
+                  for k in runs if _version(k) == version and (c := k.rsplit("/", 2)[0]) != chain
+                  and f"{c}/{following}/run" in runs]
+        if ratios:
+            return runs[later[0]]["wall"] * float(np.median(ratios))
+    others = [e["wall"] for k, e in runs.items() if k != first and _version(k) == version]
+    return float(np.mean(others)) if others else runs[first]["wall"]
 
 
 def _version(task_id: str) -> str:

@@ -167,8 +167,22 @@ class Ranks:
 
     def close(self) -> None:
         """Release the workers."""
-        for rank in range(1, self._comm.Get_size()):
-            self._comm.send(None, dest=rank, tag=QUIT)
+        release(self._comm)
+
+
+_released: set[int] = set()
+"""The communicators (by handle) whose workers this process has told to quit."""
+
+
+def release(comm) -> None:
+    """Tell the workers (ranks > 0) of ``comm`` to quit, once: a later call does nothing. Rank 0
+    calls it whenever it ends, so that workers never wait for a scheduler that is gone (a wrong
+    option, say, stops rank 0 before it schedules anything)."""
+    if comm.py2f() in _released:
+        return
+    _released.add(comm.py2f())
+    for rank in range(1, comm.Get_size()):
+        comm.send(None, dest=rank, tag=QUIT)
 
 
 def serve(comm, stopping) -> None:

@@ -23,21 +23,22 @@ def test_worker_path_imports_no_heavy_package():
 
 
 def test_a_worker_rank_of_the_console_script_skips_the_command_line_parser():
-    """``mpiexec -n N mbds-campaign run JOB``: ranks > 0 go from the console script to serving
-    tasks without importing typer or rich; rank 0 and help requests take the parser's path."""
+    """``mpiexec -n N mbds-campaign run JOB``: every rank starts MPI first; a worker's path (the
+    entry, MPI's world, the executors) imports neither typer nor rich. Help requests, other
+    commands and a launcher of one rank take the parser's path at once."""
     code = ("import sys\nfrom mbds.cli import campaign_entry, mpi_world\nimport mbds.campaign.executors\n"
-            "print(campaign_entry._worker_rank(sys.argv[1:]), "
+            "print(campaign_entry._launched_run(sys.argv[1:]), "
             "' '.join(m for m in ('typer', 'rich', 'sympy', 'xarray') if m in sys.modules) or '-')")
 
-    def ask(rank: str, *argv: str) -> list[str]:
-        env = {**os.environ, "PYTHONPATH": str(ROOT), "PMI_SIZE": "4", "PMI_RANK": rank}
+    def ask(size: str, *argv: str) -> list[str]:
+        env = {**os.environ, "PYTHONPATH": str(ROOT), "PMI_SIZE": size, "PMI_RANK": "1"}
         done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, env=env, check=True)
         return done.stdout.split()
 
-    assert ask("2", "run", "wear.job") == ["True", "-"]
-    assert ask("0", "run", "wear.job")[0] == "False"
-    assert ask("2", "run", "--help")[0] == "False"
-    assert ask("2", "status", "wear.job")[0] == "False"
+    assert ask("4", "run", "wear.job") == ["True", "-"]
+    assert ask("1", "run", "wear.job")[0] == "False"
+    assert ask("4", "run", "--help")[0] == "False"
+    assert ask("4", "status", "wear.job")[0] == "False"
 
 
 def test_workers_import_what_tasks_need_when_told():

@@ -1,5 +1,6 @@
 """How the ranks of ``mbds-campaign run`` leave: a worker that has finished must not take rank 0
-down with it, and mpiexec must report rank 0's exit code.
+down with it, mpiexec must report rank 0's exit code, and a rank 0 that stops before it schedules
+anything (a wrong option) must not leave the workers waiting.
 
 MPICH's Hydra proxy kills every rank still running (SIGKILL) when one closes its link to the
 process manager without announcing its end; MPICH announces it from a C exit handler. The
@@ -41,3 +42,14 @@ def test_rank_0_outlives_the_workers_and_mpiexec_reports_its_exit_code(tmp_path)
                           capture_output=True, text=True, timeout=120)
     assert mark.exists(), done.stdout + done.stderr  # not killed in its shut-down
     assert done.returncode == 3, done.stdout + done.stderr
+
+
+@pytest.mark.mpi
+def test_a_wrong_option_under_mpiexec_exits_2_on_every_rank(tmp_path):
+    """typer refuses the option on rank 0 before any scheduling: the workers are released and
+    the launch ends with exit 2 and typer's message, instead of waiting forever."""
+    console = Path(sys.executable).parent / "mbds-campaign"
+    done = subprocess.run([str(MPIEXEC), "-n", "3", str(console), "run", "--no-such-option", str(tmp_path / "w.job")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert "No such option: --no-such-option" in done.stderr
