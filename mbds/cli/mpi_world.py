@@ -72,8 +72,8 @@ def mpi_world():
 def abort_on_uncaught(comm) -> None:
     """Make an uncaught exception in this rank abort all ranks (what ``python -m mpi4py`` does),
     so that a failing rank never leaves the others waiting."""
-    if comm is None or "mpi4py.run" in sys.modules:
-        return
+    if comm is None or "mpi4py.run" in sys.modules or getattr(sys.excepthook, "aborts_mpi", False):
+        return  # a second call (the entry, then the run command) keeps the first hook
     previous = sys.excepthook
 
     def abort(kind, value, trace):
@@ -81,6 +81,7 @@ def abort_on_uncaught(comm) -> None:
         sys.stderr.flush()
         comm.Abort(1)
 
+    abort.aborts_mpi = True
     sys.excepthook = abort
 
 

@@ -9,6 +9,7 @@ after releasing them and ending MPI, takes a while over its own shut-down."""
 
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -53,3 +54,31 @@ def test_a_wrong_option_under_mpiexec_exits_2_on_every_rank(tmp_path):
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 2, done.stdout + done.stderr
     assert "No such option: --no-such-option" in done.stderr
+
+
+FAILING = """
+import time
+from mpi4py import MPI
+from mbds.cli.mpi_world import abort_on_uncaught
+
+comm = MPI.COMM_WORLD
+abort_on_uncaught(comm)
+abort_on_uncaught(comm)  # as the entry and then the run command do
+if comm.Get_rank() == 1:
+    raise RuntimeError("a defect met by rank 1")
+time.sleep(60)  # the other ranks would wait for rank 1 far longer
+"""
+
+
+@pytest.mark.mpi
+def test_an_uncaught_error_in_one_rank_aborts_every_rank(tmp_path):
+    """What ``python -m mpi4py`` does: the failing rank's traceback, printed once, and every rank
+    stopped at once with a non-zero exit instead of waiting for it."""
+    script = tmp_path / "failing.py"
+    script.write_text(FAILING)
+    begun = time.monotonic()
+    done = subprocess.run([str(MPIEXEC), "-n", "3", sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=120)
+    assert time.monotonic() - begun < 30
+    assert done.returncode != 0
+    assert (done.stdout + done.stderr).count("RuntimeError: a defect met by rank 1") == 1
