@@ -11,16 +11,17 @@ contact sticks) and OPEN_NEG (its reserve at the cone's far end, lambda_0R = q_L
 backwards). Given the states, the LCP reduces to a linear system over the normal forces of the
 pressed contacts and the tangential reserves lambda_0R of the sticking ones (rows gN'' = 0 and
 gT''^+ = 0 of those contacts); the slip rates gT''^- of SLIDE_NEG, OPEN_NEG and of open contacts
-that move backwards follow from their own rows. If the solution is feasible, the full LCP vector z is assembled and must pass Lemke's solution check
-(mbds.kernel.lcp.check_solution) on the original data: only a solution of the same LCP is
-accepted. Otherwise the infeasible contacts change state (a negative normal force opens, an
-approaching open contact is pressed, a tangential reserve outside its cone slides, a slip
-against its direction sticks) for at most ``rounds`` rounds; then the caller falls back
-to lexicographic Lemke.
+that move backwards follow from their own rows. If the solution is feasible, the full LCP
+vector z is assembled and must pass Lemke's solution check (mbds.kernel.lcp.check_solution) on
+the original data: only a solution of the same LCP is accepted. Otherwise the infeasible
+contacts change state (a negative normal force opens, an approaching open contact is pressed, a
+tangential reserve outside its cone slides, a slip against its direction sticks) for at most
+``rounds`` rounds; then the caller falls back to lexicographic Lemke.
 
 The states come from a memory of the last solved LCP of the same family (the compression or the
-expansion phase of impacts), matched contact by contact by vertex and edge; contacts not in it are pressed where
-their free normal rate is negative. After each solve the states of its solution are remembered.
+expansion phase of impacts), matched contact by contact by vertex and edge; contacts not in it
+are pressed where their free normal rate is negative. After each solve the states of its
+solution are remembered.
 """
 
 from __future__ import annotations
