@@ -249,9 +249,11 @@ def _factorised(M, M_factored):
 
 @jit(inline="always")
 def contact_directions(rows, dyn, index, count):
-    """M^-1 W_N and M^-1 W_T of the contacts index[:count] (after :func:`free_dynamics`)."""
-    inverse_mass_rows(dyn.L, dyn.profile, rows.WN, index, count, dyn.YN)
-    inverse_mass_rows(dyn.L, dyn.profile, rows.WT, index, count, dyn.YT)
+    """M^-1 W_N and M^-1 W_T of the contacts index[:count] (after :func:`free_dynamics`); without
+    contacts no call (its arguments cost more to pass than a step in flight spends elsewhere)."""
+    if count > 0:
+        inverse_mass_rows(dyn.L, dyn.profile, rows.WN, index, count, dyn.YN)
+        inverse_mass_rows(dyn.L, dyn.profile, rows.WT, index, count, dyn.YT)
 
 
 @jit(inline="always")
@@ -378,15 +380,32 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
 
 @jit(refcount=False)
 def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
-    """The contacts at rest (closed, not separating faster than the rest velocity), their forces
-    and the accelerations; returns (number of contacts at rest, solved)."""
+    """The contacts at rest (:func:`resting_contacts`), their forces and the accelerations;
+    returns (number of contacts at rest, solved)."""
+    na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, settings)
+    ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
+    return na, ok
+
+
+@jit(refcount=False)
+def resting_contacts(nc, gap, gd_n, gd_t, active, stick, sign, settings):
+    """The contacts at rest among the nc detected (closed, not separating faster than the rest
+    velocity) into active; stick: slower than the stick threshold tangentially; sign: the
+    direction of sliding. Returns their number."""
     rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
     na = 0
     for i in range(nc):
-        if closed(contacts.gap[i], settings) and rows.gd_n[i] <= rest:
-            pb.active[na] = i
+        if closed(gap[i], settings) and gd_n[i] <= rest:
+            active[na] = i
             na += 1
-            pb.stick[i] = abs(rows.gd_t[i]) <= STICK_FRACTION * rest
-            pb.sign[i] = 1.0 if rows.gd_t[i] > 0.0 else -1.0
-    ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
-    return na, ok
+            stick[i] = abs(gd_t[i]) <= STICK_FRACTION * rest
+            sign[i] = 1.0 if gd_t[i] > 0.0 else -1.0
+    return na
+
+
+@jit(refcount=False)
+def free_accelerations(minv_h, acc):
+    """acc = M^-1 h, the accelerations without contacts; returns True (solved)."""
+    for k in range(acc.shape[0]):
+        acc[k] = minv_h[k]
+    return True

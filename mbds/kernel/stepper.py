@@ -41,8 +41,10 @@ from mbds.kernel.contact_problem import (
     contact_forces,
     contact_laws,
     dynamics,
+    free_accelerations,
     free_dynamics,
     impacts,
+    resting_contacts,
     row_dot,
 )
 from mbds.kernel.detection import (
@@ -208,8 +210,14 @@ def advance(
             contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
             free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn)
         # --- 5: forces between impacts
-        na, forces_ok = contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1,
-                                       forces.lam_t1, a1, events, t)
+        # (the stepper calls the LCP set-up only where there are contacts: passing it the bundles costs
+        # more than a step in flight)
+        na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, settings)
+        if na > 0:
+            forces_ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
+                                      a1, events, t)
+        else:
+            forces_ok = free_accelerations(dyn.minv_h, a1)
         solved = solved and forces_ok
         if not solved:
             clock[LCP_FAILURES] += 1.0
@@ -298,7 +306,10 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
                          contacts.normal, contacts.point)
         _contact_kinematics(active, na, contacts, model, bodies, rows)
     end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, active, na)
-    end_ok = end_ok and accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
+    if na > 0:
+        end_ok = end_ok and accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
+    else:
+        end_ok = end_ok and free_accelerations(dyn.minv_h, a2)
     if not end_ok:
         for k in range(n):
             a2[k] = a1[k]
