@@ -28,10 +28,11 @@ import time
 from concurrent.futures import Future, ProcessPoolExecutor
 
 from mbds.campaign.plan import Task
-from mbds.campaign.tasks import import_for, run_task
+from mbds.campaign.tasks import import_ahead, import_for, run_task
 
-POLL = 0.005
-"""Sleep between polls of an idle scheduler or worker (s): MPI's blocking receive busy-waits."""
+POLL = 0.001
+"""The longest sleep between polls of an idle worker (s): MPI's blocking receive busy-waits. The
+scheduler answers a result within a few ms (:data:`mbds.campaign.run.LOOP_POLL`)."""
 TASK, RESULT, STOP, QUIT, PREPARE, LOAD = 1, 2, 3, 4, 5, 6  # MPI message tags
 
 
@@ -187,7 +188,9 @@ def release(comm) -> None:
 
 def serve(comm, stopping) -> None:
     """A worker rank: run the tasks rank 0 sends, one at a time, until it says to quit. A run
-    stops early when ``stopping()`` is true (a signal to this process) or rank 0 says so."""
+    stops early when ``stopping()`` is true (a signal to this process) or rank 0 says so. Until
+    rank 0's first message comes, the worker gets ready for runs of MBDS models
+    (:func:`mbds.campaign.tasks.import_ahead`)."""
     from mpi4py import MPI
 
     status = MPI.Status()
@@ -195,6 +198,7 @@ def serve(comm, stopping) -> None:
     def told_to_stop() -> bool:
         return stopping() or comm.Iprobe(source=0, tag=STOP)
 
+    import_ahead(lambda: _probe(comm, 0, MPI.ANY_TAG, status))
     while True:
         delay = POLL / 16  # the next task usually comes within a few ms of the last result
         while not _probe(comm, 0, MPI.ANY_TAG, status):

@@ -1,6 +1,17 @@
-"""The ``mbds-campaign`` command: wear campaigns over many ranks."""
+"""The ``mbds-campaign`` command: wear campaigns over many ranks.
+
+``python -m mbds.cli.campaign`` (or ``python -m mpi4py -m mbds.cli.campaign``) is the console
+script: run as the main module, this file hands over to :mod:`mbds.cli.campaign_entry` before
+it imports the command-line parser, so that a worker rank starts as light as under
+``mbds-campaign`` (the entry imports this module again, by its name, where the parser is needed,
+and never returns)."""
 
 from __future__ import annotations
+
+if __name__ == "__main__":
+    from mbds.cli.campaign_entry import main as console_script
+
+    console_script()
 
 import sys
 from pathlib import Path
@@ -235,8 +246,3 @@ def _run_locked(plan, workers: int, ranks, private_cache: bool):
                     executor.close()
     return outcome
 
-
-if __name__ == "__main__":  # python -m mbds.cli.campaign (or python -m mpi4py -m mbds.cli.campaign): as the console script
-    from mbds.cli.campaign_entry import main as console_script
-
-    console_script()

@@ -54,6 +54,26 @@ def test_workers_import_what_tasks_need_when_told():
                                    "numba", "netCDF4"]
 
 
+def test_a_worker_gets_ready_for_runs_before_rank_0_says_what_to_do():
+    """While rank 0 expands the plan, a worker imports what runs of MBDS models need and lets
+    numba set up its compiler's registries (which loading the first model would do); it stops
+    at once when a message from rank 0 waits, so that a worker told to quit (a wrong option)
+    quits without importing the simulation layers."""
+    code = ("import sys\nfrom numba.core.registry import cpu_target\nfrom mbds.campaign.tasks import import_ahead\n"
+            "import_ahead(lambda: sys.argv[1] == 'told')\n"
+            "print(len(cpu_target.target_context._registries) > 0, "
+            "' '.join(m for m in ('mbds.kernel.stepper', 'mbds.simulation.version_run', 'numba.np.arraymath', "
+            "'scipy.linalg', 'sympy', 'xarray') if m in sys.modules) or '-')")
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+    def ahead(told: str) -> list[str]:
+        return subprocess.run([sys.executable, "-c", code, told], capture_output=True, text=True, env=env,
+                              check=True).stdout.split()
+
+    assert ahead("waiting") == ["True", "mbds.kernel.stepper", "mbds.simulation.version_run", "numba.np.arraymath"]
+    assert ahead("told") == ["False", "-"]
+
+
 def test_numbas_numpy_support_is_loaded_without_scipy_linalg_and_blas_still_works():
     """numba's numpy support checks at import whether scipy's BLAS imports (scipy.linalg,
     0.15-0.35 s of a worker's start-up): importing for a run loads that support without it. A

@@ -85,6 +85,22 @@ def test_a_rank_alone_in_its_world_refuses_to_run(tmp_path):
     assert not (job.parent / "campaign" / "ledger.json").exists()
 
 
+@pytest.mark.mpi
+def test_the_module_form_reaches_the_console_script_before_the_parser(tmp_path):
+    """``python -m mpi4py -m mbds.cli.campaign run`` starts a rank as ``mbds-campaign run`` does:
+    the module hands over to the console script's entry before it imports typer, so a worker
+    rank of either form starts without the command-line parser (here the rank refuses a world
+    of one before any role is given; ``-X importtime`` lists what it imported)."""
+    job = two_mass(tmp_path / "module", FOUR, jobs="000")
+    env = {**os.environ, "PMI_SIZE": "2", "PMI_RANK": "1"}
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "mbds.cli.campaign", "run", str(job)],
+                          capture_output=True, text=True, timeout=120, env=env)
+    assert done.returncode == 2, done.stderr
+    imported = {line.rsplit("|", 1)[-1].strip() for line in done.stderr.splitlines() if line.startswith("import time:")}
+    assert {"mpi4py.MPI", "mbds.cli.campaign_entry"} <= imported
+    assert not {"typer", "rich.console"} & imported
+
+
 def test_launcher_ranks_from_environment():
     from mbds.cli.mpi_world import launcher_rank, launcher_ranks
 
