@@ -1,7 +1,5 @@
 """mbds: planar rigid multibody dynamics with unilateral contacts and run-in wear."""
 
-from mbds._version import __version__
-
 __all__ = ["__version__", "open_campaign", "outline", "select", "simulate", "stack"]
 _LAZY = {
     "open_campaign": "mbds.campaign.collect",
@@ -13,9 +11,14 @@ _LAZY = {
 
 
 def __getattr__(name: str):
-    """The notebook API, imported on first use: ``open_campaign``
+    """``__version__`` (read from the installed distribution on first use) and the notebook API,
+    imported on first use: ``open_campaign``
     (:mod:`mbds.campaign.collect`), ``outline``, ``stack``, ``select`` (:mod:`mbds.data.analysis`)
     and ``simulate`` (:mod:`mbds.simulation.notebook`)."""
+    if name == "__version__":
+        from mbds._version import version
+
+        return version()
     if name in _LAZY:
         from importlib import import_module
 

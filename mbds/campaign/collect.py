@@ -36,7 +36,7 @@ import netCDF4
 import numpy as np
 import xarray as xr
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.campaign.ledger import DONE, Ledger
 from mbds.campaign.plan import DAP_BC, RUN_KINDS, Plan, Task
 from mbds.campaign.replicates import identical_replicates
@@ -213,7 +213,7 @@ def provenance(plan: Plan, ledger: Ledger) -> dict:
     return {
         "Conventions": "CF-1.10",
         "title": f"mbds campaign of {plan.job.path.name}",
-        "mbds_version": __version__,
+        "mbds_version": mbds_version(),
         "git_commit": _git_commit(),
         "job_file": str(plan.job.path),
         "job_text": plan.job.path.read_text(encoding="utf-8"),

@@ -8,7 +8,7 @@ from pathlib import Path
 import typer
 from rich.console import Console
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.cli.errors import reported_errors
 
 app = typer.Typer(
@@ -21,7 +21,7 @@ app = typer.Typer(
 
 def _version(value: bool) -> None:
     if value:
-        print(f"mbds {__version__}")
+        print(f"mbds {mbds_version()}")
         raise typer.Exit()
 
 

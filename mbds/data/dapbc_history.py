@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.analysis.dapbc import DapbcResult, DapbcSettings
 from mbds.io.text import atomic_path
 from mbds.model.dapbc.system import DapbcSystem
@@ -65,7 +65,7 @@ def dapbc_dataset(system: DapbcSystem, result: DapbcResult, settings: DapbcSetti
         "kind": "dap_bc",
         "model": system.source.name,
         "analysis": result.analysis,
-        "mbds_version": __version__,
+        "mbds_version": mbds_version(),
         "python_version": platform.python_version(),
         "final_time": settings.final_time,
         "report_step": settings.report_step,

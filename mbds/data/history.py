@@ -12,7 +12,7 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.data.record import RunHeader, RunRecord, SampleSeries, empty_series
 from mbds.data.run_result import RunState
 from mbds.errors import ModelError
@@ -202,7 +202,7 @@ def _attributes(r: RunRecord) -> dict:
     attrs = {
         "Conventions": "CF-1.10",
         "title": f"mbds run of model {r.model}, version {r.version:03d}",
-        "mbds_version": __version__,
+        "mbds_version": mbds_version(),
         "model": r.model,
         "version": r.version,
         "seed": r.seed,

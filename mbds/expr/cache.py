@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import functools
 import hashlib
-import importlib.metadata
 import importlib.util
 import os
 import sys
@@ -23,7 +22,7 @@ import tempfile
 from pathlib import Path
 from types import ModuleType
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.errors import ModelError
 
 PREFIX = "mbds_model_"
@@ -122,8 +121,10 @@ def load(path: Path) -> ModuleType:
 def code_digest() -> str:
     """sha256 of the versions of mbds, sympy (which writes the code) and Python, and of every
     source file of the package (names and bytes): what any input digest of the cache starts from."""
+    import importlib.metadata  # reading a distribution's metadata costs 40-60 ms at first: only when asked
+
     package = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256(f"{__version__} {importlib.metadata.version('sympy')} {sys.version}".encode())
+    digest = hashlib.sha256(f"{mbds_version()} {importlib.metadata.version('sympy')} {sys.version}".encode())
     for path in sorted(package.rglob("*.py")):
         digest.update(str(path.relative_to(package)).encode())
         digest.update(path.read_bytes())

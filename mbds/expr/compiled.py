@@ -14,7 +14,6 @@ generating a module's text does (:mod:`mbds.expr.codegen`).
 
 from __future__ import annotations
 
-import importlib.metadata
 import json
 import platform
 import sys
@@ -84,6 +83,8 @@ def cached_module(key: str) -> CompiledModel | None:
 
 def _environment() -> dict:
     """What numba's machine code depends on besides the module: numba, Python, the machine."""
+    import importlib.metadata  # reading a distribution's metadata costs 40-60 ms at first: only when asked
+
     return {"numba": importlib.metadata.version("numba"), "python": sys.version, "machine": platform.machine()}
 
 

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mbds._version import __version__
+from mbds._version import version as mbds_version
 from mbds.errors import ModelError
 from mbds.io.constants import ConstantsFile, format_constants
 from mbds.io.folder import (
@@ -102,7 +102,7 @@ def wear_attributes(plan: WearPlan, version: int) -> dict:
         "title": "mbds wear update",
         "source_version": version_name(version),
         "new_version": version_name(version + 1),
-        "mbds_version": __version__,
+        "mbds_version": mbds_version(),
         "reshaped_bodies": ",".join(w.body for w in plan.bodies),
         "Conventions": "CF-1.10",
     }
