@@ -146,7 +146,8 @@ def run_campaign(plan: Plan, executor, stopping, progress=None, workers: int = 1
             unsaved = True
             if progress is not None:
                 progress(None, None, done_count(plan, ledger), len(running))
-        if unsaved and (executor.inline or time.monotonic() >= next_save):
+        # (with an inline executor, each task writes it as it starts: Ledger.mark above)
+        if unsaved and time.monotonic() >= next_save:
             begun = time.monotonic()
             ledger.save()
             unsaved, next_save = False, begun + max(SAVE_EVERY, SAVE_SHARE * (time.monotonic() - begun))

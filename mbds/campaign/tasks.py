@@ -93,8 +93,8 @@ def import_ahead(told: Callable[[], bool]) -> None:
     First numba, and its set-up of its compiler's registries, which every kind needs and which
     numba otherwise makes when the first compiled function is loaded (0.17-0.23 s, measured);
     then the imports of the tasks of MBDS model folders (``prepare``, ``run``, ``wear``: most
-    campaigns), module by module. A worker idles while rank 0 plans; a wrong guess (a DAP_BC campaign) costs
-    no more than that idle time."""
+    campaigns), module by module. A worker idles while rank 0 plans; a wrong guess (a DAP_BC
+    campaign) costs no more than that idle time."""
     if told():
         return
     from numba.core.registry import cpu_target
