@@ -38,7 +38,7 @@ from mbds.campaign.structures import Structures
 CACHE_FOLDER = ".cache"
 LOOP_POLL = 0.001
 """Seconds the scheduling loop sleeps when nothing came back and nothing was handed out."""
-SAVE_EVERY = 1.0
+SAVE_EVERY = 0.1
 """While tasks run, the ledger is written at most this often (s), and at most ``1 / SAVE_SHARE``
 of the loop's time: writing it takes time proportional to the plan (9 ms for 528 tasks,
 measured), and a result that comes back meanwhile waits. A task whose result was not yet

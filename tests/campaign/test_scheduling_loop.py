@@ -1,5 +1,5 @@
-"""The scheduling loop writes the ledger at most every SAVE_EVERY seconds while tasks run on
-other processes (issue 12): writing it takes time proportional to the plan, and a result that
+"""The scheduling loop writes the ledger at most every SAVE_EVERY seconds (set to 1 s here) while
+tasks run on other processes (issue 12): writing it takes time proportional to the plan, and a result that
 comes back meanwhile waits for it. Every change reaches the file when the loop ends."""
 
 import json
@@ -9,7 +9,9 @@ from mbds.campaign import run as campaign_run
 from mbds.campaign.executors import Sequential
 from mbds.campaign.ledger import Ledger
 from mbds.campaign.plan import expand
-from mbds.campaign.run import SAVE_EVERY, run_campaign, warm_up_first
+from mbds.campaign.run import run_campaign, warm_up_first
+
+SAVE_EVERY = 1.0
 from tests.campaign.models import two_mass
 
 QUICK = "c'gravity = 9.81, 9.7, 9.6, 9.5\nworld.breakTime = 0.002\n"
@@ -33,6 +35,7 @@ def test_the_ledger_is_written_at_most_every_save_interval_and_complete_at_the_e
         save(ledger)
 
     monkeypatch.setattr(Ledger, "save", counted)
+    monkeypatch.setattr(campaign_run, "SAVE_EVERY", SAVE_EVERY)
     structures = warm_up_first(plan)
     begun = time.monotonic()
     outcome = run_campaign(plan, Elsewhere(lambda: False), lambda: False, structures=structures)
