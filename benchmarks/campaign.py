@@ -76,6 +76,7 @@ from datetime import datetime
 from pathlib import Path
 
 import numpy as np
+from bytecode import write_bytecode
 
 ROOT = Path(__file__).resolve().parents[1]
 PYTHON = Path(sys.executable)
@@ -366,6 +367,7 @@ def main() -> int:
     parser.add_argument("--opening", action="store_true", help="only the opening figure")
     parser.add_argument("--repeat", type=int, default=5, help="openings timed in the opening mode")
     args = parser.parse_args()
+    write_bytecode()
     if args.opening:
         return opening_only(args.repeat)
     if args.scaling:

@@ -45,6 +45,8 @@ import time
 import warnings
 from pathlib import Path
 
+from bytecode import write_bytecode
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
@@ -321,6 +323,7 @@ def main() -> None:
     parser.add_argument("--amplitudes", default=",".join(map(str, AMPLITUDES)),
                         help="comma-separated c'amplitude values (m) of the stick-slip sweep")
     args = parser.parse_args()
+    write_bytecode()
     chosen = args.only.split(",")
     unknown = sorted(set(chosen) - set(PARTS))
     if unknown:

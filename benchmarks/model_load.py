@@ -19,6 +19,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from bytecode import write_bytecode
+
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ["2mass", "wearballs", "woodpecker"]
 
@@ -47,6 +49,7 @@ def measure(example: str, cache: str) -> dict:
 
 
 def main() -> None:
+    write_bytecode()
     print(f"{'model':<12} {'imports s':>10} {'assemble s':>11} {'cold compile s':>15} {'cached load s':>14} {'cached misses':>14}")
     for example in EXAMPLES:
         with tempfile.TemporaryDirectory() as cache:

@@ -23,6 +23,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from bytecode import write_bytecode
+
 ROOT = Path(__file__).resolve().parents[1]
 PYTHON = sys.executable
 EXPAND = ("import pickle, sys; from mbds.campaign.plan import expand; "
@@ -55,6 +57,7 @@ def main() -> int:
     parser.add_argument("job", nargs="?", default=str(ROOT / "campaigns" / "wearballs" / "wearballs_campaign.job"))
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
+    write_bytecode()
     source = Path(args.job).resolve()
     for round_ in range(args.repeat):
         with tempfile.TemporaryDirectory(prefix="mbds-worker-startup-") as temp:
