@@ -62,6 +62,9 @@ expansion phases of impacts; SOLVING is the memory slot where the states of a ph
 are collected until the phase ends (:func:`keep_states`)."""
 LEMKE_ONLY = -1
 """The family of the contact-force LCPs, solved by Lemke's method alone (see :func:`solve`)."""
+STICK_COMPLIANCE = 1e-6
+"""Where Lemke's method fails on a contact-force LCP with stick rows, they get this fraction of
+their largest diagonal entry as compliance and the LCP is solved once more (see :func:`solve`)."""
 
 
 @jit(inline="always")
@@ -296,7 +299,10 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     two vertices of one edge), and a body resting on an unstable equilibrium (a polygon on a
     vertex) kept its symmetry to round-off with Lemke's answer and drifted from it with the
     linear solve of the remembered states (tests/physics/test_impacts.py, the ball that must
-    not spin)."""
+    not spin). Where Lemke's end point of a contact-force LCP with stick rows fails the solution
+    check, the LCP is solved once more with a compliance on the stick rows
+    (:func:`_compliant_lemke`): two stick candidates whose tangential rows coincide (a polygon
+    resting flat on the floor) make the stick block singular to round-off."""
     if m == 0:
         return True
     A = pb.A_flat[at : at + m * m].reshape((m, m))
@@ -312,12 +318,32 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     if not solved:
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+        if status != SOLVED and nh > 0:
+            status, more = _compliant_lemke(A, q, z, w, na, nh, settings, tol_lex, pb.fwork, pb.iwork)
+            pivots += more
         if status != SOLVED:
             log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
             return False
     if family >= 0:
         remember_states(active, na, nh, pb.hrow, contacts.vertex, contacts.edge, z, w, pb.memory[SOLVING][kept:])
     return True
+
+
+@jit(refcount=False)
+def _compliant_lemke(A, q, z, w, na, nh, settings, tol_lex, fwork, iwork):
+    """Lemke's method on the contact-force LCP (A, q) whose stick rows na .. na + nh - 1 get
+    STICK_COMPLIANCE times their largest diagonal entry added to the diagonal: a sticking contact
+    then slides by that much per unit of its force (m/s^2 per N), which makes coinciding stick
+    rows independent and shares their force evenly. A keeps the compliance (the caller builds
+    each LCP afresh); returns (status, pivots), the solution checked on the compliant LCP."""
+    compliance = 0.0
+    for h in range(na, na + nh):
+        compliance = max(compliance, abs(A[h, h]))
+    compliance *= STICK_COMPLIANCE
+    for h in range(na, na + nh):
+        A[h, h] += compliance
+    return lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), fwork,
+                 iwork)
 
 
 @jit(refcount=False)
