@@ -63,8 +63,9 @@ are collected until the phase ends (:func:`keep_states`)."""
 LEMKE_ONLY = -1
 """The family of the contact-force LCPs, solved by Lemke's method alone (see :func:`solve`)."""
 STICK_COMPLIANCE = 1e-6
-"""Where Lemke's method fails on a contact-force LCP with stick rows, they get this fraction of
-their largest diagonal entry as compliance and the LCP is solved once more (see :func:`solve`)."""
+"""Where Lemke's method fails on a contact LCP with stick rows (contact forces or an impact's
+phase), they get this fraction of their largest diagonal entry as compliance and the LCP is
+solved once more (see :func:`solve`)."""
 
 
 @jit(inline="always")
@@ -299,7 +300,7 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     two vertices of one edge), and a body resting on an unstable equilibrium (a polygon on a
     vertex) kept its symmetry to round-off with Lemke's answer and drifted from it with the
     linear solve of the remembered states (tests/physics/test_impacts.py, the ball that must
-    not spin). Where Lemke's end point of a contact-force LCP with stick rows fails the solution
+    not spin). Where Lemke's end point of an LCP with stick rows (any family) fails the solution
     check, the LCP is solved once more with a compliance on the stick rows
     (:func:`_compliant_lemke`): two stick candidates whose tangential rows coincide (a polygon
     resting flat on the floor) make the stick block singular to round-off."""
@@ -331,11 +332,12 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
 
 @jit(refcount=False)
 def _compliant_lemke(A, q, z, w, na, nh, settings, tol_lex, fwork, iwork):
-    """Lemke's method on the contact-force LCP (A, q) whose stick rows na .. na + nh - 1 get
+    """Lemke's method on the LCP (A, q) whose stick rows na .. na + nh - 1 get
     STICK_COMPLIANCE times their largest diagonal entry added to the diagonal: a sticking contact
     then slides by that much per unit of its force (m/s^2 per N), which makes coinciding stick
-    rows independent and shares their force evenly. A keeps the compliance (the caller builds
-    each LCP afresh); returns (status, pivots), the solution checked on the compliant LCP."""
+    rows independent and shares their force evenly. A keeps the compliance (a contact-force LCP
+    is built afresh each time; an impact's expansion reuses its compression's matrix, so it
+    keeps the compliance the compression needed); returns (status, pivots), the solution checked on the compliant LCP."""
     compliance = 0.0
     for h in range(na, na + nh):
         compliance = max(compliance, abs(A[h, h]))
