@@ -48,9 +48,11 @@ STICK_FRACTION = 1.0
 """A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
 stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero.
 Where a stick candidate sticks, its remaining sliding speed decays with the time constant
-STICK_RELAXATION maximum steps (see :func:`accelerations`)."""
-STICK_RELAXATION = 10.0
-"""Time constant (in maximum steps) of the decay of a sticking contact's remaining sliding speed."""
+REST_RELAXATION maximum steps (see :func:`accelerations`)."""
+REST_RELAXATION = 10.0
+"""Time constant (in maximum steps) of the decay of the speeds left at a contact at rest: the
+separating speed below the rest velocity (the contact holds while it separates that slowly), and
+a sticking contact's sliding speed below the stick threshold."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 STATE_ROUNDS = 4
@@ -320,7 +322,7 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
         if status != SOLVED and nh > 0:
-            status, more = _compliant_lemke(A, q, z, w, na, nh, settings, tol_lex, pb.fwork, pb.iwork)
+            status, more = _compliant_lemke(A, q, z, w, na, nh, pb.hrow, settings, tol_lex, pb.fwork, pb.iwork)
             pivots += more
         if status != SOLVED:
             log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
@@ -331,19 +333,26 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
 
 
 @jit(refcount=False)
-def _compliant_lemke(A, q, z, w, na, nh, settings, tol_lex, fwork, iwork):
-    """Lemke's method on the LCP (A, q) whose stick rows na .. na + nh - 1 get
-    STICK_COMPLIANCE times their largest diagonal entry added to the diagonal: a sticking contact
-    then slides by that much per unit of its force (m/s^2 per N), which makes coinciding stick
-    rows independent and shares their force evenly. A keeps the compliance (a contact-force LCP
-    is built afresh each time; an impact's expansion reuses its compression's matrix, so it
-    keeps the compliance the compression needed); returns (status, pivots), the solution checked on the compliant LCP."""
+def _compliant_lemke(A, q, z, w, na, nh, hrow, settings, tol_lex, fwork, iwork):
+    """Lemke's method on the LCP (A, q) with a compliance on its stick rows na .. na + nh - 1
+    (hrow[g]: the normal column of stick row na + g): c = STICK_COMPLIANCE times the largest
+    diagonal entry of the stick block is added to the tangential block W_H^T M^-1 W_H of the
+    Delassus matrix, so a sticking contact slides by c per unit of its friction force
+    lambda_T = lambda_0R - mu lambda_N (m/s^2 per N, or m/s per N s at impacts). This makes
+    coinciding stick rows independent, shares their friction force evenly, and leaves a contact
+    without friction force (a body lying on a level floor) without sliding. A keeps the
+    compliance (a contact-force LCP is built afresh each time; an impact's expansion reuses its
+    compression's matrix, so it keeps the compliance the compression needed); returns (status,
+    pivots), the solution checked on the compliant LCP."""
     compliance = 0.0
-    for h in range(na, na + nh):
-        compliance = max(compliance, abs(A[h, h]))
+    for r in range(na, na + nh):
+        compliance = max(compliance, abs(A[r, r]))
     compliance *= STICK_COMPLIANCE
-    for h in range(na, na + nh):
-        A[h, h] += compliance
+    for g in range(nh):
+        r = na + g
+        mu = 0.5 * A[na + nh + g, hrow[g]]  # the cone row holds 2 mu lambda_N - lambda_0R >= 0
+        A[r, r] += compliance
+        A[r, hrow[g]] -= compliance * mu
     return lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), fwork,
                  iwork)
 
@@ -381,14 +390,17 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
         k = part.shape[0]
         nh = build_matrix(part, k, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                           pb.span, pb.A_flat)
+        # a separating contact holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a sticking one with
+        # g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity and the stick
+        # threshold decay instead of drifting on (an approaching contact keeps its speed until the impact
+        # law takes it: see :func:`impacts`)
+        relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
         for a in range(k):
-            pb.bvec[a] = row_dot(rows.WN, part[a], dyn.minv_h) + rows.wbar_n[part[a]]
+            c = part[a]
+            pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + max(rows.gd_n[c], 0.0) * relaxation
         for h in range(nh):
             c = part[pb.hrow[h]]
-            # sticking means g_T'' = -g_T' / (STICK_RELAXATION dt_max): the speed left below the stick
-            # threshold decays instead of drifting on
-            pb.bvec[k + h] = (row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c]
-                              + rows.gd_t[c] / (STICK_RELAXATION * settings[DT_MAX]))
+            pb.bvec[k + h] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c] + rows.gd_t[c] * relaxation
             pb.bvec[k + nh + h] = 0.0
         solved = solve(k + 2 * nh, 0, part, k, nh, LEMKE_ONLY, 0, contacts, pb, settings, tol_lex, events, t)
         for a in range(k):

@@ -20,7 +20,7 @@ The friction work is mu m g times the path length.
 import numpy as np
 import pytest
 
-from mbds.kernel.contact_problem import REST_FRACTION, STICK_FRACTION, STICK_RELAXATION
+from mbds.kernel.contact_problem import REST_FRACTION, STICK_FRACTION, REST_RELAXATION
 from tests.physics.models import BodyOnFloor, rectangle, run_folder
 
 pytestmark = pytest.mark.physics
@@ -69,9 +69,9 @@ def test_the_block_rests_exactly_while_the_force_is_inside_the_cone(ramp):
     assert stuck.sum() > 100
     # a contact sticks once its sliding speed is below the stick threshold (STICK_FRACTION x
     # REST_FRACTION x maxPen / dt_max), and the speed left then decays with the time constant
-    # STICK_RELAXATION x dt_max: after 20 time constants it is gone to round-off
+    # REST_RELAXATION x dt_max: after 20 time constants it is gone to round-off
     assert np.abs(v[stuck]).max() < STICK_FRACTION * REST_FRACTION * MAX_PEN / 1e-4
-    settled = stuck & (t > T2 + 20.0 * STICK_RELAXATION * 1e-4)
+    settled = stuck & (t > T2 + 20.0 * REST_RELAXATION * 1e-4)
     assert np.abs(v[settled]).max() < 1e-6 * REST_FRACTION * MAX_PEN / 1e-4
     assert np.ptp(x[stuck]) < 1e-3 * MAX_PEN  # m: no creep while stuck
     assert v[-1] < -0.01  # slipping backwards again at the end
