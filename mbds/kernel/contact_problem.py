@@ -51,8 +51,8 @@ Where a stick candidate sticks, its remaining sliding speed decays with the time
 REST_RELAXATION maximum steps (see :func:`accelerations`)."""
 REST_RELAXATION = 10.0
 """Time constant (in maximum steps) of the decay of the speeds left at a contact at rest: the
-separating speed below the rest velocity (the contact holds while it separates that slowly), and
-a sticking contact's sliding speed below the stick threshold."""
+normal speed below the rest velocity (approaching or separating), and a sticking contact's
+sliding speed below the stick threshold."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
 STATE_ROUNDS = 4
@@ -390,14 +390,16 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
         k = part.shape[0]
         nh = build_matrix(part, k, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                           pb.span, pb.A_flat)
-        # a separating contact holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a sticking one with
-        # g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity and the stick
-        # threshold decay instead of drifting on (an approaching contact keeps its speed until the impact
-        # law takes it: see :func:`impacts`)
+        # a contact slower than the rest velocity holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a
+        # sticking one with g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity
+        # and the stick threshold decay instead of drifting on, either way (a faster approach keeps its speed
+        # until the impact law takes it: see :func:`impacts`)
         relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
+        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for a in range(k):
             c = part[a]
-            pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + max(rows.gd_n[c], 0.0) * relaxation
+            left = rows.gd_n[c] if rows.gd_n[c] >= -rest else 0.0
+            pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + left * relaxation
         for h in range(nh):
             c = part[pb.hrow[h]]
             pb.bvec[k + h] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c] + rows.gd_t[c] * relaxation
