@@ -77,6 +77,12 @@ def closed(gap, settings):
 
 
 @jit(inline="always")
+def rest_velocity(settings):
+    """The rest velocity REST_FRACTION * maxPen / dt_max (m/s)."""
+    return REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+
+
+@jit(inline="always")
 def impacts(gap, rate, settings):
     """Whether a contact with ``gap`` (m) and normal rate (m/s) starts an impact: closed and
     approaching faster than ZeroVelocityTolerance, or slower but so that it would go beyond
@@ -384,18 +390,18 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
     ok = True
+    # a contact slower than the rest velocity holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a
+    # sticking one with g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity
+    # and the stick threshold decay instead of drifting on, either way (a faster approach keeps its speed
+    # until the impact law takes it: see :func:`impacts`)
+    relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
+    rest = rest_velocity(settings)
     ng = split_components(active, na, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.group, pb.root, pb.grouped, pb.masks)
     for g in range(ng):
         part = active[pb.group[g] : pb.group[g + 1]]
         k = part.shape[0]
         nh = build_matrix(part, k, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                           pb.span, pb.A_flat)
-        # a contact slower than the rest velocity holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a
-        # sticking one with g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity
-        # and the stick threshold decay instead of drifting on, either way (a faster approach keeps its speed
-        # until the impact law takes it: see :func:`impacts`)
-        relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
-        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
         for a in range(k):
             c = part[a]
             left = rows.gd_n[c] if rows.gd_n[c] >= -rest else 0.0
@@ -434,7 +440,7 @@ def resting_contacts(nc, gap, gd_n, gd_t, active, stick, sign, settings):
     """The contacts at rest among the nc detected (closed, not separating faster than the rest
     velocity) into active; stick: slower than the stick threshold tangentially; sign: the
     direction of sliding. Returns their number."""
-    rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+    rest = rest_velocity(settings)
     na = 0
     for i in range(nc):
         if closed(gap[i], settings) and gd_n[i] <= rest:

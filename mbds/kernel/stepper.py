@@ -34,7 +34,6 @@ from __future__ import annotations
 import numpy as np
 
 from mbds.kernel.contact_problem import (
-    REST_FRACTION,
     accelerations,
     closed,
     closed_directions,
@@ -45,6 +44,7 @@ from mbds.kernel.contact_problem import (
     free_dynamics,
     impacts,
     resting_contacts,
+    rest_velocity,
     row_dot,
 )
 from mbds.kernel.detection import (
@@ -192,7 +192,7 @@ def advance(
         # --- 4: impact (see contact_problem.impacts)
         impacting = False
         counted = False
-        rest = REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+        rest = rest_velocity(settings)
         for i in range(nc):
             if impacts(contacts.gap[i], rows.gd_n[i], settings):
                 impacting = True
