@@ -42,8 +42,9 @@ from mbds.kernel.rollback import edge_end_point
 REST_FRACTION = 0.01
 """A closed contact whose normal speed is below the rest velocity REST_FRACTION * maxPen /
 dt_max is at rest: within a maximum step it moves by at most 1 % of the allowed penetration. A
-closed contact approaching slower than that (round-off, or the drift of a pivoting contact)
-still gets its velocity from the impact laws, but this does not count as an impact."""
+touching contact approaching slower than that (round-off, or the drift of a pivoting contact)
+still gets its velocity from the impact laws, but this does not count as an impact; one not yet
+touching settles onto its surface (:func:`impacts`)."""
 STICK_FRACTION = 1.0
 """A contact at rest whose sliding speed is below STICK_FRACTION times the rest velocity is a
 stick candidate; a faster one slides, and the step ends where its sliding speed reaches zero.
@@ -55,6 +56,10 @@ normal speed below the rest velocity (approaching or separating), and a sticking
 sliding speed below the stick threshold."""
 CLOSED_FRACTION = 0.01
 """A contact whose gap is below CLOSED_FRACTION * maxPen is closed (touching)."""
+HELD_FRACTION = 0.25
+"""A contact at rest stays held (in the contact-force LCP) up to a gap of HELD_FRACTION * maxPen,
+above the closed band: the decay of a separating speed below the rest velocity lifts it by at
+most 0.1 maxPen (see :func:`accelerations`), so it does not open and fall back onto its surface."""
 STATE_ROUNDS = 4
 """Rounds of state changes tried from the remembered contact states before Lemke's method
 takes over (see :func:`solve` and mbds.kernel.active_set)."""
@@ -77,9 +82,25 @@ def closed(gap, settings):
 
 
 @jit(inline="always")
+def held(gap, settings):
+    """Whether a contact at rest with ``gap`` (m) is held (see HELD_FRACTION)."""
+    return gap <= HELD_FRACTION * settings[MAX_PEN]
+
+
+@jit(inline="always")
 def rest_velocity(settings):
     """The rest velocity REST_FRACTION * maxPen / dt_max (m/s)."""
     return REST_FRACTION * settings[MAX_PEN] / settings[DT_MAX]
+
+
+@jit(inline="always")
+def settling_speed(gap, settings):
+    """The normal speed (m/s) toward zero gap that a contact at rest relaxes to:
+    -gap / (4 REST_RELAXATION dt_max), within half the rest velocity either way. With the decay
+    of :func:`accelerations` the gap settles as a critically damped oscillator, without
+    overshoot, and a penetration is pushed out slower than the rest velocity."""
+    bound = 0.5 * rest_velocity(settings)
+    return min(max(-gap / (4.0 * REST_RELAXATION * settings[DT_MAX]), -bound), bound)
 
 
 @jit(inline="always")
@@ -87,9 +108,11 @@ def impacts(gap, rate, settings):
     """Whether a contact with ``gap`` (m) and normal rate (m/s) starts an impact: closed and
     approaching faster than ZeroVelocityTolerance, or slower but so that it would go beyond
     maximumPenetration within a maximum step (else the step would shrink to minimumTimestep
-    and stay there)."""
-    return closed(gap, settings) and rate < 0.0 and (
-        rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN])
+    and stay there). A contact not yet touching (gap > 0) that approaches slower than the rest
+    velocity is settling onto its surface (:func:`settling_speed`): no impact."""
+    if not closed(gap, settings) or rate >= 0.0 or gap > 0.0 and rate >= -rest_velocity(settings):
+        return False
+    return rate < -settings[ZERO_VELOCITY] or gap + rate * settings[DT_MAX] < -settings[MAX_PEN]
 
 
 @jit(refcount=False)
@@ -270,11 +293,11 @@ def contact_directions(rows, dyn, index, count):
 
 @jit(inline="always")
 def closed_directions(nc, contacts, rows, dyn, settings, index):
-    """:func:`contact_directions` of the closed contacts among the nc detected (the only ones
+    """:func:`contact_directions` of the held contacts among the nc detected (the only ones
     the impact and contact-force LCPs take); index: scratch for their list."""
     count = 0
     for i in range(nc):
-        if closed(contacts.gap[i], settings):
+        if held(contacts.gap[i], settings):
             index[count] = i
             count += 1
     contact_directions(rows, dyn, index, count)
@@ -390,10 +413,11 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
     ok = True
-    # a contact slower than the rest velocity holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a
-    # sticking one with g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity
-    # and the stick threshold decay instead of drifting on, either way (a faster approach keeps its speed
-    # until the impact law takes it: see :func:`impacts`)
+    # a contact slower than the rest velocity holds with g_N'' = -(g_N' - v_s) / (REST_RELAXATION dt_max),
+    # v_s its settling speed (:func:`settling_speed`), a sticking one with g_T'' = -g_T' / (REST_RELAXATION
+    # dt_max): the speeds left below the rest velocity and the stick threshold decay instead of drifting on,
+    # either way, and the gap settles to zero (a faster approach keeps its speed until the impact law takes
+    # it: see :func:`impacts`)
     relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
     rest = rest_velocity(settings)
     ng = split_components(active, na, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.group, pb.root, pb.grouped, pb.masks)
@@ -404,7 +428,7 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
                           pb.span, pb.A_flat)
         for a in range(k):
             c = part[a]
-            left = rows.gd_n[c] if rows.gd_n[c] >= -rest else 0.0
+            left = rows.gd_n[c] - settling_speed(contacts.gap[c], settings) if rows.gd_n[c] >= -rest else 0.0
             pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + left * relaxation
         for h in range(nh):
             c = part[pb.hrow[h]]
@@ -437,13 +461,13 @@ def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t,
 
 @jit(refcount=False)
 def resting_contacts(nc, gap, gd_n, gd_t, active, stick, sign, settings):
-    """The contacts at rest among the nc detected (closed, not separating faster than the rest
-    velocity) into active; stick: slower than the stick threshold tangentially; sign: the
-    direction of sliding. Returns their number."""
+    """The contacts at rest among the nc detected (closed and not separating faster than the rest
+    velocity, or held and slower than it either way) into active; stick: slower than the stick
+    threshold tangentially; sign: the direction of sliding. Returns their number."""
     rest = rest_velocity(settings)
     na = 0
     for i in range(nc):
-        if closed(gap[i], settings) and gd_n[i] <= rest:
+        if closed(gap[i], settings) and gd_n[i] <= rest or held(gap[i], settings) and abs(gd_n[i]) <= rest:
             active[na] = i
             na += 1
             stick[i] = abs(gd_t[i]) <= STICK_FRACTION * rest

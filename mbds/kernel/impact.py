@@ -12,6 +12,7 @@ from mbds.kernel.contact_problem import (
     closed,
     impacts,
     keep_states,
+    rest_velocity,
     row_dot,
     solve,
     span_dot,
@@ -30,7 +31,8 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     are left to the contact forces of the step. Updates u (and the relative velocities
     rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when an LCP
     failed: velocities are then left unchanged (a compression failed) or a group whose
-    expansion failed keeps those after compression (a plastic impact)."""
+    expansion failed keeps those after compression (a plastic impact). A group whose contacts
+    would all rebound slower than the rest velocity expands without normal restitution."""
     active, group, laws, gd_n, gd_t = pb.active, pb.group, rows.laws, rows.gd_n, rows.gd_t
     WN, WT, YN, YT = rows.WN, rows.WT, dyn.YN, dyn.YT
     imp_n, imp_t, gam_n, gam_t = forces.imp_n, forces.imp_t, forces.gam_n, forces.gam_t
@@ -78,10 +80,22 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     at = 0
     expanded = True
     kept = 0
+    rest = rest_velocity(settings)
     for g in range(ng):
         s = group[g]
         part = active[s : group[g + 1]]
         k = part.shape[0]
+        # the fastest rebound Newton's law would give a contact of the group (m/s); where every
+        # rebound would be slower than the rest velocity the group's impact is plastic in the normal
+        # direction, so a body's bounces end instead of going on at the scale of one step's fall
+        bounce = 0.0
+        for a in range(k):
+            bounce = max(bounce, -laws[part[a], 1] * gam_n[part[a]])
+        if bounce < rest:
+            for a in range(k):
+                c = part[a]
+                lam_ne[c] = 0.0
+                lam_te[c] = laws[c, 2] * imp_t[c]
         for a in range(k):
             c = part[a]
             sn = gd_n[c]
