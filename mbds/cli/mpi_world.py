@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 
 LAUNCHER_SIZES = ("PMI_SIZE", "OMPI_COMM_WORLD_SIZE", "MV2_COMM_WORLD_SIZE", "PMIX_SIZE")
 """Environment variables in which MPI launchers (MPICH's Hydra, Intel MPI, Open MPI, MVAPICH,
@@ -20,6 +21,11 @@ LAUNCHER_RANKS = ("PMI_RANK", "OMPI_COMM_WORLD_RANK", "MV2_COMM_WORLD_RANK", "PM
 
 EXIT_ALONE = 2
 """Exit code of a rank that its launcher started as one of several but that MPI shows a world of 1."""
+
+ABORT_GRACE = 0.5
+"""Seconds a rank with an uncaught exception waits, after printing its traceback, before it aborts
+every rank: the launcher reads a rank's output through a pipe and lost the end of the traceback
+when the abort came first (about one launch in twelve)."""
 
 
 def _first_number(names, environ) -> int | None:
@@ -79,6 +85,7 @@ def abort_on_uncaught(comm) -> None:
     def abort(kind, value, trace):
         previous(kind, value, trace)
         sys.stderr.flush()
+        time.sleep(ABORT_GRACE)  # the launcher passes the traceback on before the abort kills its reader
         comm.Abort(1)
 
     abort.aborts_mpi = True
