@@ -292,7 +292,7 @@ def contact_directions(rows, dyn, index, count):
 
 
 @jit(inline="always")
-def closed_directions(nc, contacts, rows, dyn, settings, index):
+def held_directions(nc, contacts, rows, dyn, settings, index):
     """:func:`contact_directions` of the held contacts among the nc detected (the only ones
     the impact and contact-force LCPs take); index: scratch for their list."""
     count = 0

@@ -36,7 +36,7 @@ import numpy as np
 from mbds.kernel.contact_problem import (
     accelerations,
     closed,
-    closed_directions,
+    held_directions,
     contact_forces,
     contact_laws,
     dynamics,
@@ -168,7 +168,7 @@ def advance(
             if n > 0 and np.isnan(a2[0]):  # no step has computed the accelerations at t yet
                 _contact_rows(nc, contacts, model, bodies, rows)
                 contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-                closed_directions(nc, contacts, rows, dyn, settings, pb.active)
+                held_directions(nc, contacts, rows, dyn, settings, pb.active)
                 contact_forces(nc, contacts, rows, dyn, pb, settings, settings[LEXICO], forces.lam_n,
                                forces.lam_t, a2, events, t)
             sample(mechanical_energy, q, u, a2, t, model.p, clock, point_interval, model.watch_start,
@@ -188,7 +188,7 @@ def advance(
             tol_lex = settings[LEXICO]
         _contact_rows(nc, contacts, model, bodies, rows)
         contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-        closed_directions(nc, contacts, rows, dyn, settings, pb.active)
+        held_directions(nc, contacts, rows, dyn, settings, pb.active)
         # --- 4: impact (see contact_problem.impacts)
         impacting = False
         counted = False
