@@ -153,7 +153,7 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
                 z[na + nh + g] = -w[na + g]
                 zlist[nz] = na + nh + g
                 nz += 1
-        if _restate(z, w, na, nh, candidate, state, tol_lex):
+        if _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
             continue
         for a in range(nz):
             if z[zlist[a]] < 0.0:
@@ -163,24 +163,31 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
 
 
 @jit(refcount=False)
-def _restate(z, w, na, nh, candidate, state, tol_lex):
+def _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
     """Change the states of the contacts whose point z (w: A z + q before the slip rates) is
-    infeasible beyond tol_lex relative to the largest entry of z (a sticking contact outside
-    Coulomb's cone by any amount); return whether any changed."""
+    infeasible beyond tol_lex, measured as in Lemke's solution check: an entry of z relative to
+    the largest entry of z, a row of w (and the slip rate it holds) relative to
+    |q|_max + |z|_max msum (msum: the sums of |A| over the columns of the nonzeros of z, from
+    mbds.kernel.lcp.check_solution), so that round-off in a row does not change a state; a
+    sticking contact outside Coulomb's cone by any amount changes. Returns whether any changed."""
     scale = 0.0
     for i in range(z.shape[0]):
         scale = max(scale, abs(z[i]))
     tol = tol_lex * scale
+    qnorm = 0.0
+    for v in q:
+        qnorm = max(qnorm, abs(v))
     changed = False
     for a in range(na):
         g = candidate[a]
         s = state[a]
         new = s
-        if not _pressed(s) and w[a] < -tol:  # an open contact that approaches
+        if not _pressed(s) and w[a] < -tol_lex * (qnorm + scale * msum[a]):  # an open contact that approaches
             new = SLIDE_NEG if s == OPEN_NEG else PRESSED
         elif _pressed(s) and z[a] < -tol:
             new = OPEN
         elif g >= 0:
+            row_tol = tol_lex * (qnorm + scale * msum[na + g])  # of gT''^+ and the slip rate it holds
             reserve, far, slip = z[na + g], w[na + nh + g], z[na + nh + g]
             # the cone is kept exactly: no friction beyond it, none at mu = 0
             if s == PRESSED or s == OPEN_STICK:
@@ -189,12 +196,13 @@ def _restate(z, w, na, nh, candidate, state, tol_lex):
                 elif far < 0.0:  # above the cone's far end
                     new = SLIDE_NEG if s == PRESSED else OPEN_NEG
             elif s == SLIDE_POS:
-                if w[na + g] < -tol:
+                if w[na + g] < -row_tol:
                     new = PRESSED
             elif s == OPEN:
-                if slip > 0.0 and far > tol:  # slips backwards while its reserve is inside the cone
+                # slips backwards while its reserve is inside the cone
+                if slip > 0.0 and far > tol_lex * (qnorm + scale * msum[na + nh + g]):
                     new = OPEN_NEG
-            elif slip < -tol:  # SLIDE_NEG, OPEN_NEG: a slip against the direction sticks
+            elif slip < -row_tol:  # SLIDE_NEG, OPEN_NEG: a slip against the direction sticks
                 new = PRESSED if s == SLIDE_NEG else OPEN_STICK
         if new != s:
             state[a] = new

@@ -123,6 +123,33 @@ def test_fast_path_hits_expansion_problems():
     assert same >= 0.9 * hits
 
 
+@pytest.mark.parametrize("infeasibility, kept", [(1e-10, True), (1e-6, False)])
+def test_a_state_changes_only_where_the_point_fails_lemkes_solution_check(infeasibility, kept):
+    """Two frictionless contacts of a light body (Delassus entries 1e4 1/kg), the first pressed
+    at -1 m/s, the second open at -0.5 m/s - ``infeasibility``: the first one's impulse
+    (1e-4 N s) leaves it approaching at ``infeasibility``. Lemke's check measures that row against |q| + |z| sum|A| (about
+    1.5 m/s), so 1e-10 m/s is within tol_lex = 1e-8 and the states stand in round 0; 1e-6 m/s
+    is not, so the open contact is pressed (round 1). Measured against |z| alone (1e-4, the
+    units of an impulse), 1e-10 m/s would have changed the state of a point Lemke's method
+    accepts, and the fast path would have fallen back to Lemke."""
+    scale = 1e4
+    A = scale * np.array([[1.0, 0.5], [0.5, 1.0]])
+    q = np.array([-1.0, -0.5 - infeasibility])
+    fwork, iwork = lcp_workspace(2)
+    z, w = np.zeros(2), np.zeros(2)
+    state = np.array([PRESSED, OPEN], dtype=np.int64)
+    ok = solve_states(A, q, z, w, 2, 0, np.zeros(0, dtype=np.int64), state, 0, TOL_PIV, TOL_LEX, 100, fwork, iwork)
+    assert ok == kept
+    if kept:
+        np.testing.assert_allclose(z, [1e-4, 0.0], rtol=1e-12)
+        assert w[1] == pytest.approx(-infeasibility, rel=1e-3)
+    else:
+        assert list(state) == [PRESSED, PRESSED]
+        ok = solve_states(A, q, z, w, 2, 0, np.zeros(0, dtype=np.int64), state, 1, TOL_PIV, TOL_LEX, 100, fwork,
+                          iwork)
+        assert ok and z[1] > 0.0 and np.abs(w).max() <= 1e-12
+
+
 @pytest.mark.parametrize("seed", range(40))
 def test_cold_guesses_never_return_a_wrong_answer(seed):
     """From arbitrary states (wrong ones included) an accepted answer still solves the LCP."""
