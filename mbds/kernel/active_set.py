@@ -168,7 +168,7 @@ def _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
     infeasible beyond tol_lex, measured as in Lemke's solution check: an entry of z relative to
     the largest entry of z, a row of w (and the slip rate it holds) relative to
     |q|_max + |z|_max msum (msum: the sums of |A| over the columns of the nonzeros of z, from
-    mbds.kernel.lcp.check_solution), so that round-off in a row does not change a state; a
+    mbds.kernel.lcp.check_solution), so that a row the check accepts does not change a state; a
     sticking contact outside Coulomb's cone by any amount changes. Returns whether any changed."""
     scale = 0.0
     for i in range(z.shape[0]):
