@@ -27,7 +27,7 @@ solution are remembered.
 from __future__ import annotations
 
 from mbds.kernel.jit import jit
-from mbds.kernel.lcp import check_solution
+from mbds.kernel.lcp import absmax, check_solution
 from mbds.kernel.linalg import gauss_solve
 
 OPEN = 0
@@ -170,24 +170,20 @@ def _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
     |q|_max + |z|_max msum (msum: the sums of |A| over the columns of the nonzeros of z, from
     mbds.kernel.lcp.check_solution), so that a row the check accepts does not change a state; a
     sticking contact outside Coulomb's cone by any amount changes. Returns whether any changed."""
-    scale = 0.0
-    for i in range(z.shape[0]):
-        scale = max(scale, abs(z[i]))
+    scale = absmax(z)
     tol = tol_lex * scale
-    qnorm = 0.0
-    for v in q:
-        qnorm = max(qnorm, abs(v))
+    qnorm = absmax(q)
     changed = False
     for a in range(na):
         g = candidate[a]
         s = state[a]
         new = s
-        if not _pressed(s) and w[a] < -tol_lex * (qnorm + scale * msum[a]):  # an open contact that approaches
+        if not _pressed(s) and w[a] < -_row_tolerance(tol_lex, qnorm, scale, msum, a):  # an open contact approaches
             new = SLIDE_NEG if s == OPEN_NEG else PRESSED
         elif _pressed(s) and z[a] < -tol:
             new = OPEN
         elif g >= 0:
-            row_tol = tol_lex * (qnorm + scale * msum[na + g])  # of gT''^+ and the slip rate it holds
+            row_tol = _row_tolerance(tol_lex, qnorm, scale, msum, na + g)  # of gT''^+ and the slip rate it holds
             reserve, far, slip = z[na + g], w[na + nh + g], z[na + nh + g]
             # the cone is kept exactly: no friction beyond it, none at mu = 0
             if s == PRESSED or s == OPEN_STICK:
@@ -200,7 +196,7 @@ def _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
                     new = PRESSED
             elif s == OPEN:
                 # slips backwards while its reserve is inside the cone
-                if slip > 0.0 and far > tol_lex * (qnorm + scale * msum[na + nh + g]):
+                if slip > 0.0 and far > _row_tolerance(tol_lex, qnorm, scale, msum, na + nh + g):
                     new = OPEN_NEG
             elif slip < -row_tol:  # SLIDE_NEG, OPEN_NEG: a slip against the direction sticks
                 new = PRESSED if s == SLIDE_NEG else OPEN_STICK
@@ -208,6 +204,12 @@ def _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
             state[a] = new
             changed = True
     return changed
+
+
+@jit(inline="always")
+def _row_tolerance(tol_lex, qnorm, scale, msum, i):
+    """The tolerance of row i of w in Lemke's solution check: tol_lex (|q|_max + |z|_max msum[i])."""
+    return tol_lex * (qnorm + scale * msum[i])
 
 
 @jit(inline="always")

@@ -128,7 +128,7 @@ def _attempt(
     where[z0] = -1
     # First pivot: z0 enters with column d = -e; the leaving row is the lexicographic minimum
     # of [q, I]: the smallest q_i, ties to the largest index.
-    limit = _min(q) + tol_lex * _absmax(q)
+    limit = _min(q) + tol_lex * absmax(q)
     r = 0
     for i in range(n):
         if q[i] <= limit:
@@ -200,7 +200,7 @@ def _attempt(
         d, dnext = dnext, d
 
         # Ratio test on qbar (column -1 of the lexicographic rows); ties go to _lexbreak.
-        dmax = _absmax(d)
+        dmax = absmax(d)
         if not dmax < np.inf:
             return PIVOT_FAILURE, pivots, rho
         threshold = tol_piv * dmax
@@ -251,7 +251,7 @@ def _lexbreak(rows, ntied, ratio, d, dmax, G, where, slot_of, tol_lex):
                 v = 1.0 if where[c] == i else 0.0
             ratio[a] = v / d[i]
             vmin = min(vmin, ratio[a])
-        scale = _absmax(G[s]) if s >= 0 else 1.0
+        scale = absmax(G[s]) if s >= 0 else 1.0
         limit = vmin + tol_lex * (scale if scale > 0.0 else 1.0) / dmax
         kept = 0
         for a in range(ntied):
@@ -277,7 +277,7 @@ def _min(x):
 
 
 @jit(refcount=False)
-def _absmax(x):
+def absmax(x):
     """max_i |x_i| of a 1-d array; NaN if an entry is NaN."""
     m = 0.0
     for v in x:
@@ -321,7 +321,7 @@ def check_solution(M, q, tol_lex, z, w, zlist, nz, msum):
     znorm = 0.0
     for a in range(nz):
         znorm = max(znorm, z[zlist[a]])
-    qnorm = _absmax(q)
+    qnorm = absmax(q)
     for i in range(n):
         w[i] = q[i]
         msum[i] = 0.0

@@ -127,9 +127,9 @@ def test_fast_path_hits_expansion_problems():
 def test_a_state_changes_only_where_the_point_fails_lemkes_solution_check(infeasibility, kept):
     """Two frictionless contacts of a light body (Delassus entries 1e4 1/kg), the first pressed
     at -1 m/s, the second open at -0.5 m/s - ``infeasibility``: the first one's impulse
-    (1e-4 N s) leaves it approaching at ``infeasibility``. Lemke's check measures that row against |q| + |z| sum|A| (about
-    1.5 m/s), so 1e-10 m/s is within tol_lex = 1e-8 and the states stand in round 0; 1e-6 m/s
-    is not, so the open contact is pressed (round 1). Measured against |z| alone (1e-4, the
+    (1e-4 N s) leaves it approaching at ``infeasibility``. Lemke's check measures that row
+    against |q| + |z| sum|A| (about 1.5 m/s), so 1e-10 m/s is within tol_lex = 1e-8 and the
+    states stand in round 0; 1e-6 m/s is not, so the open contact is pressed (round 1). Measured against |z| alone (1e-4, the
     units of an impulse), 1e-10 m/s would have changed the state of a point Lemke's method
     accepts, and the fast path would have fallen back to Lemke."""
     scale = 1e4
