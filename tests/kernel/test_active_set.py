@@ -129,9 +129,10 @@ def test_a_state_changes_only_where_the_point_fails_lemkes_solution_check(infeas
     at -1 m/s, the second open at -0.5 m/s - ``infeasibility``: the first one's impulse
     (1e-4 N s) leaves it approaching at ``infeasibility``. Lemke's check measures that row
     against |q| + |z| sum|A| (about 1.5 m/s), so 1e-10 m/s is within tol_lex = 1e-8 and the
-    states stand in round 0; 1e-6 m/s is not, so the open contact is pressed (round 1). Measured against |z| alone (1e-4, the
-    units of an impulse), 1e-10 m/s would have changed the state of a point Lemke's method
-    accepts, and the fast path would have fallen back to Lemke."""
+    states stand in round 0; 1e-6 m/s is not, so the open contact is pressed (round 1).
+    Measured against |z| alone (1e-4, the units of an impulse), 1e-10 m/s would have changed
+    the state of a point Lemke's method accepts, and the fast path would have fallen back to
+    Lemke."""
     scale = 1e4
     A = scale * np.array([[1.0, 0.5], [0.5, 1.0]])
     q = np.array([-1.0, -0.5 - infeasibility])
