@@ -36,7 +36,8 @@ from mbds.kernel.active_set import recall_states, remember_states, solve_states
 from mbds.kernel.components import split_components
 from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.one_contact import solve_one_contact
-from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope
+from mbds.kernel.redundancy import project_targets
+from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope, span_dot
 from mbds.kernel.rollback import edge_end_point
 
 REST_FRACTION = 0.01
@@ -63,12 +64,11 @@ most 0.1 maxPen (see :func:`accelerations`), so it does not open and fall back o
 STATE_ROUNDS = 4
 """Rounds of state changes tried from the remembered contact states before Lemke's method
 takes over (see :func:`solve` and mbds.kernel.active_set)."""
-COMPRESSION, EXPANSION, SOLVING = range(3)
-"""Families of LCPs whose contact states are remembered apart: the compression and the
-expansion phases of impacts; SOLVING is the memory slot where the states of a phase's groups
-are collected until the phase ends (:func:`keep_states`)."""
-LEMKE_ONLY = -1
-"""The family of the contact-force LCPs, solved by Lemke's method alone (see :func:`solve`)."""
+COMPRESSION, EXPANSION, FORCES, SOLVING = range(4)
+"""Families of LCPs whose contact states (mbds.kernel.active_set) are remembered apart: the
+compression and the expansion phases of impacts and the contact forces; SOLVING is the memory
+slot where the states of a phase's groups are collected until the phase ends
+(:func:`keep_states`)."""
 STICK_COMPLIANCE = 1e-6
 """Where Lemke's method fails on a contact LCP with stick rows (contact forces or an impact's
 phase), they get this fraction of their largest diagonal entry as compliance and the LCP is
@@ -121,17 +121,6 @@ def inverse_mass_rows(L, profile, rows, index, count, Y):
     its envelope)."""
     for c in range(count):
         cholesky_solve_row(L, profile, rows, index[c], Y)
-
-
-@jit(inline="always")
-def span_dot(A, i, B, j, span, a):
-    """sum_k A[i, k] B[j, k] (row i of A with row j of B, no array views), over the columns
-    span[a, 0] <= k < span[a, 1] outside which row i of A is zero (:func:`row_spans`): the
-    products left out are with exact zeros, so the sum is that over all columns."""
-    s = 0.0
-    for k in range(span[a, 0], span[a, 1]):
-        s += A[i, k] * B[j, k]
-    return s
 
 
 @jit(inline="always")
@@ -319,28 +308,23 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     mbds.kernel.components) held in pb.A_flat[at:] and pb.bvec; log failures; return True
     when solved (the solution in pb.z, pb.w).
 
-    For the impact LCPs (family COMPRESSION or EXPANSION) the contact states remembered from the
-    last LCP of the same family (contacts matched by vertex and edge) are tried first
-    (mbds.kernel.active_set, at most STATE_ROUNDS rounds of state changes); a point that does
-    not pass Lemke's solution check is discarded and the problem is solved by lexicographic
-    Lemke. The states of the solution are collected in memory slot SOLVING from row ``kept``
-    on, for :func:`keep_states`. The contact-force LCPs (LEMKE_ONLY) of a single contact are
-    first solved in closed form where their solution is provably unique
-    (mbds.kernel.one_contact), so that Lemke's method could find no other; all others go to
-    Lemke directly: with several contacts the LCP may have many solutions (a body resting on
-    two vertices of one edge), and a body resting on an unstable equilibrium (a polygon on a
-    vertex) kept its symmetry to round-off with Lemke's answer and drifted from it with the
-    linear solve of the remembered states (tests/physics/test_impacts.py, the ball that must
-    not spin). Where Lemke's end point of an LCP with stick rows (any family) fails the solution
-    check, the LCP is solved once more with a compliance on the stick rows
-    (:func:`_compliant_lemke`): two stick candidates whose tangential rows coincide (a polygon
-    resting flat on the floor) make the stick block singular to round-off."""
+    The contact states remembered from the last LCP of the same family (contacts matched by
+    vertex and edge) are tried first (mbds.kernel.active_set, at most STATE_ROUNDS rounds of state
+    changes), except for a contact-force LCP (FORCES) of a single contact: it is solved in closed
+    form where its solution is provably unique (mbds.kernel.one_contact), so that Lemke's method
+    could find no other. A point that does not pass Lemke's solution check is discarded and the
+    problem is solved by lexicographic Lemke. The states of the solution are collected in memory
+    slot SOLVING from row ``kept`` on, for :func:`keep_states`. Where Lemke's end point of an LCP
+    with stick rows (any family) fails the solution check, the LCP is solved once more with a
+    compliance on the stick rows (:func:`_compliant_lemke`): two stick candidates whose
+    tangential rows coincide (a polygon resting flat on the floor) make the stick block singular
+    to round-off."""
     if m == 0:
         return True
     A = pb.A_flat[at : at + m * m].reshape((m, m))
     q, z, w = pb.bvec[:m], pb.z[:m], pb.w[:m]
     solved = False
-    if family >= 0 and _negative(q):  # (else z = 0: Lemke answers without a pivot)
+    if (family != FORCES or na > 1) and _negative(q):  # (else z = 0: Lemke answers without a pivot)
         recall_states(active, na, contacts.vertex, contacts.edge, pb.memory[family], pb.memory_count[family], q,
                       pb.state)
         solved = solve_states(A, q, z, w, na, nh, pb.hrow, pb.state, STATE_ROUNDS, settings[PIVOT_MAX], tol_lex,
@@ -356,8 +340,7 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
         if status != SOLVED:
             log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
             return False
-    if family >= 0:
-        remember_states(active, na, nh, pb.hrow, contacts.vertex, contacts.edge, z, w, pb.memory[SOLVING][kept:])
+    remember_states(active, na, nh, pb.hrow, contacts.vertex, contacts.edge, z, w, pb.memory[SOLVING][kept:])
     return True
 
 
@@ -421,26 +404,38 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
     relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
     rest = rest_velocity(settings)
     ng = split_components(active, na, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.group, pb.root, pb.grouped, pb.masks)
+    kept = 0
     for g in range(ng):
         part = active[pb.group[g] : pb.group[g + 1]]
         k = part.shape[0]
         nh = build_matrix(part, k, stick, sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow,
                           pb.span, pb.A_flat)
+        target = pb.z  # the rest targets, then the LCP's solution
         for a in range(k):
             c = part[a]
             left = rows.gd_n[c] - settling_speed(contacts.gap[c], settings) if rows.gd_n[c] >= -rest else 0.0
-            pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + left * relaxation
+            target[a] = left * relaxation
+        for h in range(nh):
+            target[k + h] = rows.gd_t[part[pb.hrow[h]]] * relaxation
+        if k > 1:
+            project_targets(part, k, nh, pb.hrow, rows.WN, rows.WT, pb.span, target, settings[PIVOT_MAX], pb.gram,
+                            pb.gram[n:], pb.iwork)
+        for a in range(k):
+            c = part[a]
+            pb.bvec[a] = row_dot(rows.WN, c, dyn.minv_h) + rows.wbar_n[c] + target[a]
         for h in range(nh):
             c = part[pb.hrow[h]]
-            pb.bvec[k + h] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c] + rows.gd_t[c] * relaxation
+            pb.bvec[k + h] = row_dot(rows.WT, c, dyn.minv_h) + rows.wbar_t[c] + target[k + h]
             pb.bvec[k + nh + h] = 0.0
-        solved = solve(k + 2 * nh, 0, part, k, nh, LEMKE_ONLY, 0, contacts, pb, settings, tol_lex, events, t)
+        solved = solve(k + 2 * nh, 0, part, k, nh, FORCES, kept, contacts, pb, settings, tol_lex, events, t)
         for a in range(k):
             lam_n[part[a]] = 0.0
             lam_t[part[a]] = 0.0
         if solved:
             tangential_forces(part, k, stick, sign, rows.laws, pb.z, lam_n, lam_t)
+            kept += k
         ok = ok and solved
+    keep_states(pb, FORCES, kept)
     for k in range(n):
         acc[k] = dyn.minv_h[k]
     for a in range(na):

@@ -15,11 +15,11 @@ from mbds.kernel.contact_problem import (
     rest_velocity,
     row_dot,
     solve,
-    span_dot,
     tangential_forces,
 )
 from mbds.kernel.jit import jit
 from mbds.kernel.layout import DRIVE_WORK, LOST
+from mbds.kernel.linalg import span_dot
 from mbds.kernel.rollback import record
 
 

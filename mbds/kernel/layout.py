@@ -67,13 +67,13 @@ contacts."""
 
 Problem = namedtuple(
     "Problem",
-    "column hrow span active stick sign group root grouped masks A_flat bvec z w state memory memory_count fwork iwork",
+    "column hrow span active stick sign group root grouped masks A_flat bvec z w state memory memory_count gram fwork iwork",
 )
 """The LCPs being set up and solved: contact set (active, stick, sign), its independent groups
 (mbds.kernel.components: bounds, scratch and the nonzero columns of W and Y rows), matrices,
 vectors, the contact states (mbds.kernel.active_set) being tried and those remembered for the 2
-impact LCPs (rows: vertex, edge, state; a third slot collects those of the groups being solved),
-scratch."""
+impact LCPs and the contact-force LCPs (rows: vertex, edge, state; a fourth slot collects those of
+the groups being solved), scratch (gram: for mbds.kernel.redundancy)."""
 
 Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t compression_loss a1 a2 q_star u_star")
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
@@ -122,8 +122,8 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
                         f((c, n)))
     problem = Problem(
         f((c, n)), f(c, i), f((c, 2), i), f(c, i), f(c, np.bool_), f(c), f(c + 1, i), f(c, i), f(c, i),
-        f((2, c, (n + 63) // 64), np.uint64), f(size * size), f(size), f(size), f(size), f(c, i), f((3, c, 3), i),
-        f(2, i), fwork, iwork,
+        f((2, c, (n + 63) // 64), np.uint64), f(size * size), f(size), f(size), f(size), f(c, i), f((4, c, 3), i),
+        f(3, i), f((n + 2, n)), fwork, iwork,
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     s = ROLLBACK_SLOTS

@@ -174,3 +174,15 @@ def min_norm_solve(D, b):
         for j in range(n):
             x[j] += D[i, j] * y[i]
     return x, ok
+
+
+@jit(inline="always")
+def span_dot(A, i, B, j, span, a):
+    """sum_k A[i, k] B[j, k] (row i of A with row j of B, no array views), over the columns
+    span[a, 0] <= k < span[a, 1] outside which row i of A is zero
+    (mbds.kernel.contact_problem.row_spans): the products left out are with exact zeros, so the
+    sum is that over all columns."""
+    s = 0.0
+    for k in range(span[a, 0], span[a, 1]):
+        s += A[i, k] * B[j, k]
+    return s
