@@ -400,7 +400,8 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
     # v_s its settling speed (:func:`settling_speed`), a sticking one with g_T'' = -g_T' / (REST_RELAXATION
     # dt_max): the speeds left below the rest velocity and the stick threshold decay instead of drifting on,
     # either way, and the gap settles to zero (a faster approach keeps its speed until the impact law takes
-    # it: see :func:`impacts`)
+    # it: see :func:`impacts`); the targets of a group whose rows are dependent are projected onto the
+    # targets one motion meets (mbds.kernel.redundancy)
     relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
     rest = rest_velocity(settings)
     ng = split_components(active, na, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.group, pb.root, pb.grouped, pb.masks)

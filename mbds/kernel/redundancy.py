@@ -41,7 +41,9 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
         lo = min(lo, span[a, 0])
         hi = max(hi, span[a, 1])
     n = hi - lo
-    if n <= 0:
+    if n <= 0:  # rows without a nonzero entry meet no target but zero
+        for i in range(R):
+            d[i] = 0.0
         return 0
     for i in range(n):
         perm[i] = i

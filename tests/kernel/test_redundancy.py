@@ -82,3 +82,12 @@ def test_a_group_on_some_of_the_coordinates():
     rank, out = project(pad(WN), pad(WT), part, hrow, span, d)
     assert rank == 4 < len(rows)
     np.testing.assert_allclose(out, rows @ np.linalg.lstsq(rows, d, rcond=None)[0], rtol=0, atol=1e-9)
+
+
+def test_rows_without_entries_meet_only_zero_targets():
+    """A group whose rows are all zero (no coordinate in their span) gets zero targets, rank 0."""
+    WN, WT = np.zeros((2, 2, 3))
+    span = np.zeros((2, 2), dtype=np.int64)
+    rank, out = project(WN, WT, np.array([0, 1]), np.array([1]), span, np.array([1.0, -2.0, 3.0]))
+    assert rank == 0
+    assert np.array_equal(out, np.zeros(3))
