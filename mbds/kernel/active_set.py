@@ -27,7 +27,7 @@ solution are remembered.
 from __future__ import annotations
 
 from mbds.kernel.jit import jit
-from mbds.kernel.lcp import absmax, check_solution
+from mbds.kernel.lcp import absmax, add_columns, check_solution, failed_rows
 from mbds.kernel.linalg import gauss_solve
 
 OPEN = 0
@@ -146,7 +146,11 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
                 z[na + g] = A[na + nh + g, a] * z[a] + q[na + nh + g]
                 zlist[nz] = na + g
                 nz += 1
-        check_solution(A, q, tol_lex, z, w, zlist, nz, msum)  # w = A z + q without the slip rates
+        for i in range(m):  # w = A z + q without the slip rates
+            w[i] = q[i]
+            msum[i] = 0.0
+        add_columns(A, z, w, zlist, 0, nz, msum)
+        unknowns = nz
         for g in range(nh):  # slip rates gT''^-: only their own row gT''^+ holds them
             a = hrow[g]
             if state[a] == SLIDE_NEG or state[a] == OPEN_NEG or (state[a] == OPEN and w[na + g] < 0.0):
@@ -155,10 +159,15 @@ def solve_states(A, q, z, w, na, nh, hrow, state, rounds, tol_piv, tol_lex, max_
                 nz += 1
         if _restate(z, w, q, msum, na, nh, candidate, state, tol_lex):
             continue
+        kept = True
         for a in range(nz):
             if z[zlist[a]] < 0.0:
                 z[zlist[a]] = 0.0
-        return check_solution(A, q, tol_lex, z, w, zlist, nz, msum) == 0
+                kept = kept and a >= unknowns
+        if not kept:  # Lemke's solution check on the point as it is
+            return check_solution(A, q, tol_lex, z, w, zlist, nz, msum) == 0
+        add_columns(A, z, w, zlist, unknowns, nz, msum)  # (the sums over the unknowns' columns stand)
+        return failed_rows(q, tol_lex, z, w, zlist, nz, msum) == 0
     return False
 
 

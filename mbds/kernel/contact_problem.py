@@ -37,7 +37,7 @@ from mbds.kernel.components import split_components
 from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.one_contact import solve_one_contact
 from mbds.kernel.redundancy import project_targets
-from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope, span_dot
+from mbds.kernel.linalg import cholesky, cholesky_solve, cholesky_solve_row, envelope
 from mbds.kernel.rollback import edge_end_point
 
 REST_FRACTION = 0.01
@@ -132,21 +132,41 @@ def row_dot(A, i, v):
     return s
 
 
-@jit(refcount=False)
-def row_spans(active, na, WN, WT, span):
-    """span[a] = (first, last + 1) of the coordinates where row active[a] of WN or WT is nonzero
-    (a contact moves the coordinates of its two bodies only); (0, 0) for zero rows."""
-    n = WN.shape[1]
+@jit(inline="always")
+def row_spans(active, na, WN, WT, YN, YT, span):
+    """span[a, :2] = (first, last + 1) of the coordinates where row active[a] of WN or WT is
+    nonzero (a contact moves the coordinates of its two bodies only), span[a, 2:] the same of
+    its rows of YN, YT = M^-1 W (those of the bodies a mass couples to them); (0, 0) for zero
+    rows."""
     for a in range(na):
-        c = active[a]
-        first = n
-        last = -1
-        for k in range(n):
-            if WN[c, k] != 0.0 or WT[c, k] != 0.0:
-                first = min(first, k)
-                last = k
-        span[a, 0] = min(first, last + 1)
-        span[a, 1] = last + 1
+        _nonzero_span(WN, WT, active[a], span, a, 0)
+        _nonzero_span(YN, YT, active[a], span, a, 2)
+
+
+@jit(inline="always")
+def _nonzero_span(A, B, c, span, a, at):
+    """span[a, at:at + 2] = (first, last + 1) of the columns where row c of A or B is nonzero."""
+    n = A.shape[1]
+    first = n
+    last = -1
+    for k in range(n):
+        if A[c, k] != 0.0 or B[c, k] != 0.0:
+            first = min(first, k)
+            last = k
+    span[a, at] = min(first, last + 1)
+    span[a, at + 1] = last + 1
+
+
+@jit(inline="always")
+def coupled_dot(W, i, Y, j, span, a, b):
+    """sum_k W[i, k] Y[j, k] for row i of W (contact a of the LCP) and row j of Y = M^-1 W^T
+    (contact b), over the columns where both can be nonzero (:func:`row_spans`): the products
+    left out are with exact zeros, so the sum is that over all columns, and 0 for contacts no
+    mass couples."""
+    s = 0.0
+    for k in range(max(span[a, 0], span[b, 2]), min(span[a, 1], span[b, 3])):
+        s += W[i, k] * Y[j, k]
+    return s
 
 
 @jit(refcount=False)
@@ -154,12 +174,12 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, sp
     """Fill the matrix A (size m = na + 2 nh, row-major in A_flat[:m * m]) for the contacts
     active[:na]; return nh.
 
-    column: (cap, n) scratch for M^-1 times the effective normal column of each contact;
-    hrow: (cap,) int64 scratch, the index in ``active`` of each stick candidate; span: (cap, 2)
-    int64, the nonzero span of each contact's rows (:func:`row_spans`), filled here.
+    column: (cap, n) scratch for M^-1 times the effective normal column of each contact (set
+    within the nonzero span of its Y rows only); hrow: (cap,) int64 scratch, the index in
+    ``active`` of each stick candidate; span: (cap, 4) int64, the nonzero spans of each
+    contact's W and Y rows (:func:`row_spans`), filled here.
     """
-    n = WN.shape[1]
-    row_spans(active, na, WN, WT, span)
+    row_spans(active, na, WN, WT, YN, YT, span)
     nh = 0
     for a in range(na):
         c = active[a]
@@ -167,7 +187,7 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, sp
             hrow[nh] = a
             nh += 1
         f = laws[c, 0] * (1.0 if stick[c] else sign[c])
-        for k in range(n):
+        for k in range(span[a, 2], span[a, 3]):
             column[a, k] = YN[c, k] - f * YT[c, k]
     m = na + 2 * nh
     A = A_flat[: m * m].reshape((m, m))
@@ -177,16 +197,16 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, sp
     for i in range(na):
         ci = active[i]
         for j in range(na):
-            A[i, j] = span_dot(WN, ci, column, j, span, i)
+            A[i, j] = coupled_dot(WN, ci, column, j, span, i, j)
         for h in range(nh):
-            A[i, na + h] = span_dot(WN, ci, YT, active[hrow[h]], span, i)
+            A[i, na + h] = coupled_dot(WN, ci, YT, active[hrow[h]], span, i, hrow[h])
     for g in range(nh):
         cg = active[hrow[g]]
         r = na + g
         for j in range(na):
-            A[r, j] = span_dot(WT, cg, column, j, span, hrow[g])
+            A[r, j] = coupled_dot(WT, cg, column, j, span, hrow[g], j)
         for h in range(nh):
-            A[r, na + h] = span_dot(WT, cg, YT, active[hrow[h]], span, hrow[g])
+            A[r, na + h] = coupled_dot(WT, cg, YT, active[hrow[h]], span, hrow[g], hrow[h])
         A[r, na + nh + g] = 1.0
         r2 = na + nh + g
         A[r2, hrow[g]] = 2.0 * laws[cg, 0]

@@ -121,7 +121,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     dynamics = Dynamics(f((n, n)), f((n, n)), f((2, n), i), np.full((n, n), np.nan), f(n), f(n), f((c, n)),
                         f((c, n)))
     problem = Problem(
-        f((c, n)), f(c, i), f((c, 2), i), f(c, i), f(c, np.bool_), f(c), f(c + 1, i), f(c, i), f(c, i),
+        f((c, n)), f(c, i), f((c, 4), i), f(c, i), f(c, np.bool_), f(c), f(c + 1, i), f(c, i), f(c, i),
         f((2, c, (n + 63) // 64), np.uint64), f(size * size), f(size), f(size), f(size), f(c, i), f((4, c, 3), i),
         f(3, i), f((n + 2, n)), fwork, iwork,
     )

@@ -317,19 +317,34 @@ def _end_point(M, q, tol_lex, qbar, basis, z, w, zlist, msum, status):
 def check_solution(M, q, tol_lex, z, w, zlist, nz, msum):
     """w = M z + q for z >= 0 with nonzeros only at zlist[:nz]; return the number of rows that
     fail the solution check of the module doc (0: z, w solve the LCP). msum: (n,) scratch."""
+    for i in range(q.shape[0]):
+        w[i] = q[i]
+        msum[i] = 0.0
+    add_columns(M, z, w, zlist, 0, nz, msum)
+    return failed_rows(q, tol_lex, z, w, zlist, nz, msum)
+
+
+@jit(inline="always")
+def add_columns(M, z, w, zlist, start, nz, msum):
+    """w += M[:, j] z[j] and msum += |M[:, j]| for the columns j in zlist[start:nz], column by
+    column (independent sums over the rows): after the columns zlist[:start], the same sums as
+    over zlist[:nz] at once."""
+    for a in range(start, nz):
+        j = zlist[a]
+        for i in range(M.shape[0]):
+            w[i] += M[i, j] * z[j]
+            msum[i] += abs(M[i, j])
+
+
+@jit(inline="always")
+def failed_rows(q, tol_lex, z, w, zlist, nz, msum):
+    """The number of rows of w = M z + q (z nonzero only at zlist[:nz], msum the sums of |M| over
+    those columns) that fail the solution check of the module doc."""
     n = q.shape[0]
     znorm = 0.0
     for a in range(nz):
         znorm = max(znorm, z[zlist[a]])
     qnorm = absmax(q)
-    for i in range(n):
-        w[i] = q[i]
-        msum[i] = 0.0
-    for a in range(nz):  # column by column: independent sums over the rows
-        j = zlist[a]
-        for i in range(n):
-            w[i] += M[i, j] * z[j]
-            msum[i] += abs(M[i, j])
     failed = 0
     for i in range(n):
         zi = z[i] / znorm if znorm > 0.0 else 0.0

@@ -77,30 +77,41 @@ def cholesky_solve_row(L, profile, B, i, X):
     """X[i] = A^-1 B[i] for A = L L^T (rows i of B and X, without array views); profile: the
     envelope of L (:func:`envelope`).
 
-    The leading zeros of B[i], the trailing zeros of the forward solution and the entries of L
-    outside its envelope are skipped (a contact row touches the coordinates of two bodies only);
-    the terms left out are products with exact zeros, so the result equals that of the full
-    loops."""
+    The leading zeros of B[i], the rows of the forward and backward solutions that no nonzero
+    reaches through the envelope of L (exact zeros) and the entries of L outside its envelope
+    are skipped (a contact row touches the coordinates of two bodies only); the terms left out
+    are products with exact zeros, so the result equals that of the full loops."""
     n = L.shape[0]
     first = 0
     while first < n and B[i, first] == 0.0:
         X[i, first] = 0.0
         first += 1
+    reach = n - 1  # the last row that a nonzero so far can reach: B's last nonzero or a column's envelope
+    while reach >= first and B[i, reach] == 0.0:
+        reach -= 1
     last = -1
     for r in range(first, n):
+        if r > reach:
+            break
         s = B[i, r]
         for k in range(max(first, profile[0, r]), r):
             s -= L[r, k] * X[i, k]
         X[i, r] = s / L[r, r]
         if X[i, r] != 0.0:
             last = r
+            reach = max(reach, profile[1, r])
     for r in range(n - 1, last, -1):
         X[i, r] = 0.0
+    low = first  # the first nonzero of X so far: a row whose column of L ends above it stays 0
     for r in range(last, -1, -1):
+        if r < first and profile[1, r] < low:
+            continue  # (X[i, r] is already 0)
         s = X[i, r]
         for k in range(r + 1, min(last, profile[1, r]) + 1):
             s -= L[k, r] * X[i, k]
         X[i, r] = s / L[r, r]
+        if X[i, r] != 0.0:
+            low = r
 
 
 @jit(refcount=False)

@@ -45,9 +45,9 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
         for i in range(R):
             d[i] = 0.0
         return 0
-    for i in range(n):
+    for i in range(n):  # G's lower triangle only, here and below
         perm[i] = i
-        for j in range(n):
+        for j in range(i + 1):
             G[i, j] = 0.0
     for i in range(R):
         a = i if i < k else hrow[i - k]
@@ -56,7 +56,7 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
         for p in range(span[a, 0], span[a, 1]):
             wp = W[c, p]
             if wp != 0.0:
-                for q in range(span[a, 0], span[a, 1]):
+                for q in range(span[a, 0], p + 1):
                     G[p - lo, q - lo] += wp * W[c, q]
     gmax = 0.0
     for i in range(n):
@@ -71,17 +71,13 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
             r = j
             break
         if p != j:
-            perm[j], perm[p] = perm[p], perm[j]
-            for c in range(n):
-                G[j, c], G[p, c] = G[p, c], G[j, c]
-            for c in range(n):
-                G[c, j], G[c, p] = G[c, p], G[c, j]
+            _swap_symmetric(G, perm, n, j, p)
         pivot = np.sqrt(G[j, j])
         G[j, j] = pivot
         for i in range(j + 1, n):
             G[i, j] /= pivot
         for i in range(j + 1, n):
-            for c in range(j + 1, n):
+            for c in range(j + 1, i + 1):
                 G[i, c] -= G[i, j] * G[c, j]
     if r >= R:
         return R
@@ -117,3 +113,17 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
             s += W[c, p] * b[p - lo]
         d[i] = s
     return r
+
+
+@jit(inline="always")
+def _swap_symmetric(G, perm, n, j, p):
+    """Swap coordinates j < p of the symmetric n x n matrix whose lower triangle G holds (rows
+    and columns alike; the factor's columns left of j move with their rows) and in perm."""
+    perm[j], perm[p] = perm[p], perm[j]
+    for c in range(j):
+        G[j, c], G[p, c] = G[p, c], G[j, c]
+    G[j, j], G[p, p] = G[p, p], G[j, j]
+    for i in range(j + 1, p):
+        G[i, j], G[p, i] = G[p, i], G[i, j]
+    for i in range(p + 1, n):
+        G[i, j], G[i, p] = G[i, p], G[i, j]

@@ -204,12 +204,18 @@ def dense_row_solve(L, b):
     return x
 
 
-@pytest.mark.parametrize("dense", [False, True])
-def test_envelope_solves_equal_the_full_loops(dense):
-    """Skipping the zeros outside L's envelope and outside a row's nonzeros changes no bit."""
+@pytest.mark.parametrize("mass", ["blocks", "coupled", "dense"])
+def test_envelope_solves_equal_the_full_loops(mass):
+    """Skipping the zeros outside L's envelope and outside a row's nonzeros changes no bit:
+    free bodies (block-diagonal M), two bodies coupled across the others (the envelope of L
+    jumps from block 1 to block 3 and back), and a full M."""
     rng = np.random.default_rng(3)
     M = block_mass(rng, 5)
-    if dense:
+    if mass == "coupled":
+        M[9:12, 3:6] = 0.3 * rng.standard_normal((3, 3))
+        M[3:6, 9:12] = M[9:12, 3:6].T
+        assert np.all(np.linalg.eigvalsh(M) > 0.0)
+    if mass == "dense":
         A = rng.standard_normal((15, 15))
         M = A @ A.T + 15 * np.eye(15)
     L, profile = np.zeros_like(M), np.zeros((2, 15), dtype=np.int64)
