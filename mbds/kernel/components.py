@@ -15,7 +15,7 @@ import numpy as np
 from mbds.kernel.jit import jit
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def split_components(active, na, WN, WT, YN, YT, group, root, grouped, masks):
     """Reorder the contacts active[:na] (rows of WN, WT and of YN, YT = M^-1 W) so that each
     group of coupled contacts is contiguous, group g at active[group[g]:group[g + 1]]; return

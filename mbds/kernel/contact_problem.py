@@ -169,7 +169,7 @@ def coupled_dot(W, i, Y, j, span, a, b):
     return s
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, span, A_flat):
     """Fill the matrix A (size m = na + 2 nh, row-major in A_flat[:m * m]) for the contacts
     active[:na]; return nh.
@@ -214,7 +214,7 @@ def build_matrix(active, na, stick, sign, laws, WN, WT, YN, YT, column, hrow, sp
     return nh
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def tangential_forces(active, na, stick, sign, laws, z, lam_n, lam_t):
     """Normal and tangential forces (or impulses) of the active contacts from an LCP solution z."""
     h = 0
@@ -322,7 +322,7 @@ def dynamics(mass_matrix, h_vector, q, u, t, p, rows, dyn, index, count):
     return True
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, events, t):
     """Solve the LCP of size m = na + 2 nh over the contacts active[:na] (one group of
     mbds.kernel.components) held in pb.A_flat[at:] and pb.bvec; log failures; return True

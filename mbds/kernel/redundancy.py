@@ -26,7 +26,7 @@ import numpy as np
 from mbds.kernel.jit import jit
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
     """d[:R] <- its orthogonal projection onto the range of W_R^T, the R = k + nh rows of a group
     (the normal rows of part[:k], then the tangential rows of its stick candidates
@@ -50,9 +50,7 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
         for j in range(i + 1):
             G[i, j] = 0.0
     for i in range(R):
-        a = i if i < k else hrow[i - k]
-        c = part[a]
-        W = WN if i < k else WT
+        a, c, W = _group_row(i, k, hrow, part, WN, WT)
         for p in range(span[a, 0], span[a, 1]):
             wp = W[c, p]
             if wp != 0.0:
@@ -85,9 +83,7 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
     for p in range(n):
         b[p] = 0.0
     for i in range(R):  # b = W_R d
-        a = i if i < k else hrow[i - k]
-        c = part[a]
-        W = WN if i < k else WT
+        a, c, W = _group_row(i, k, hrow, part, WN, WT)
         for p in range(span[a, 0], span[a, 1]):
             b[p - lo] += W[c, p] * d[i]
     for j in range(r):  # L y = P^T b, then L^T x = y, on the factorised coordinates
@@ -105,14 +101,20 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
     for j in range(r):
         b[perm[j]] = x[j]
     for i in range(R):  # d = W_R^T x
-        a = i if i < k else hrow[i - k]
-        c = part[a]
-        W = WN if i < k else WT
+        a, c, W = _group_row(i, k, hrow, part, WN, WT)
         s = 0.0
         for p in range(span[a, 0], span[a, 1]):
             s += W[c, p] * b[p - lo]
         d[i] = s
     return r
+
+
+@jit(inline="always")
+def _group_row(i, k, hrow, part, WN, WT):
+    """(a, c, W) of row i of W_R (see :func:`project_targets`): the index in part of its contact,
+    the contact, and WN (normal rows, i < k) or WT (tangential rows of stick candidates)."""
+    a = i if i < k else hrow[i - k]
+    return a, part[a], WN if i < k else WT
 
 
 @jit(inline="always")
