@@ -23,6 +23,7 @@ import ctypes
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -74,6 +75,10 @@ def child(folder: Path, break_time: float, runs: int, out: Path) -> None:
     (out / "ready").write_text("")
     for _ in range(runs):
         simulate(model, RunSettings(break_time=break_time))
+    (out / "done").write_text("")
+    deadline = time.monotonic() + 60.0
+    while not (out / "stop").exists() and time.monotonic() < deadline:  # perf stops before the exit
+        time.sleep(0.05)
 
 
 def short(name: str) -> str:
@@ -141,8 +146,13 @@ def main() -> int:
                 return process.returncode or 1
             time.sleep(0.2)
         data = temp / "perf.data"
-        subprocess.run(["perf", "record", "-F", "4000", "-p", str(process.pid), "-o", str(data)],
-                       capture_output=True)
+        recorder = subprocess.Popen(["perf", "record", "-F", "4000", "-p", str(process.pid), "-o", str(data)],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        while not (temp / "done").exists() and process.poll() is None:
+            time.sleep(0.05)
+        recorder.send_signal(signal.SIGINT)  # the runs only, not the interpreter's exit
+        recorder.wait()
+        (temp / "stop").write_text("")
         process.wait()
         analyse(data, temp / "code")
         Path(f"/tmp/perf-{process.pid}.map").unlink(missing_ok=True)
