@@ -187,6 +187,15 @@ def block_mass(rng, blocks):
     return M
 
 
+def couple_bodies(rng, M):
+    """M with bodies 1 and 3 (of a :func:`block_mass`) coupled by a mass block, still SPD: the
+    envelope of its Cholesky factor jumps from block 1 to block 3 and back."""
+    M[9:12, 3:6] = 0.3 * rng.standard_normal((3, 3))
+    M[3:6, 9:12] = M[9:12, 3:6].T
+    assert np.all(np.linalg.eigvalsh(M) > 0.0)
+    return M
+
+
 def dense_row_solve(L, b):
     """The full forward and back substitution, in the order of the kernel's loops."""
     n = len(b)
@@ -212,9 +221,7 @@ def test_envelope_solves_equal_the_full_loops(mass):
     rng = np.random.default_rng(3)
     M = block_mass(rng, 5)
     if mass == "coupled":
-        M[9:12, 3:6] = 0.3 * rng.standard_normal((3, 3))
-        M[3:6, 9:12] = M[9:12, 3:6].T
-        assert np.all(np.linalg.eigvalsh(M) > 0.0)
+        M = couple_bodies(rng, M)
     if mass == "dense":
         A = rng.standard_normal((15, 15))
         M = A @ A.T + 15 * np.eye(15)

@@ -9,7 +9,7 @@ import pytest
 
 from mbds.kernel.contact_problem import build_matrix
 from mbds.kernel.linalg import cholesky, cholesky_solve_row, envelope
-from tests.kernel.test_active_set import block_mass
+from tests.kernel.test_active_set import block_mass, couple_bodies
 from tests.kernel.test_components import contacts_between
 
 PAIRS = [(0, -1), (0, 1), (1, -1), (1, 2), (2, -1), (2, 3), (3, -1), (3, 4), (4, -1), (0, -1)]
@@ -22,8 +22,7 @@ def problem(mass, seed):
     rng = np.random.default_rng(seed)
     M = block_mass(rng, 5)
     if mass == "coupled":
-        M[9:12, 3:6] = 0.3 * rng.standard_normal((3, 3))
-        M[3:6, 9:12] = M[9:12, 3:6].T
+        M = couple_bodies(rng, M)
     WN, WT = contacts_between(rng, 5, PAIRS)
     L, profile = np.zeros_like(M), np.zeros((2, 15), np.int64)
     assert cholesky(M, L)

@@ -21,6 +21,7 @@ mu_c the same rod slides on with bounded forces and no jump in velocity.
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pytest
@@ -47,7 +48,7 @@ class Rod:
     speed: float
     dt_max: float = 1e-5
 
-    @property
+    @cached_property
     def corner(self) -> np.ndarray:
         """The lowest corner relative to the centroid (m)."""
         c, s = np.cos(self.theta), np.sin(self.theta)
@@ -63,8 +64,8 @@ class Rod:
     def impulsive_stick(self) -> tuple[np.ndarray, float, np.ndarray]:
         """(v_G+ (m/s), omega+ (rad/s), impulse (N s)) of the impulse that stops the corner:
         angular momentum about the corner conserved, the rod turning about it afterwards."""
-        r = -self.corner  # corner -> centroid
-        omega = MASS * (r[0] * 0.0 - r[1] * self.speed) / (INERTIA + MASS * (r @ r))
+        r = -self.corner  # corner -> centroid; r x v_G- with v_G- = (speed, 0)
+        omega = -MASS * r[1] * self.speed / (INERTIA + MASS * (r @ r))
         velocity = omega * np.array([-r[1], r[0]])
         return velocity, omega, MASS * (velocity - np.array([self.speed, 0.0]))
 
