@@ -28,10 +28,9 @@ import sympy
 
 from mbds._version import version as mbds_version
 from mbds.expr import cache
-from mbds.expr.compiled import GENERATED_FUNCTIONS, CompiledModel, load_compiled
+from mbds.expr.compiled import CompiledModel, load_compiled
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter
-from mbds.kernel.jit import kernel_source_hash
 
 __all__ = ["CompiledModel", "DependentCoordinate", "ModelExpressions", "compile_model", "generate_source"]
 
@@ -117,29 +116,7 @@ def generate_source(expressions: ModelExpressions) -> str:
         f"PARAMETERS = {r.n_parameters}",
     ]
     functions = [_function(name, body) for name, body in bodies.items()]
-    return "\n".join(header) + "\n\n\n" + "\n\n\n".join([*functions, _driver()]) + "\n"
-
-
-def _driver() -> str:
-    """The model's time stepper: the kernel's stepper bound to this module's functions.
-
-    Compiled on first use and cached with the module. The kernel's source hash is part of the
-    text, so a changed kernel gives a new module instead of stale cached machine code.
-    """
-    functions = ", ".join(GENERATED_FUNCTIONS)
-    return "\n".join(
-        [
-            f"# kernel source {kernel_source_hash()}",
-            "from mbds.kernel.stepper import advance as _advance  # noqa: E402",
-            "",
-            "",
-            "@jit(cache=True, refcount=False)",
-            "def advance(model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):",
-            '    """Integrate this model (see mbds.kernel.stepper.advance)."""',
-            f"    return _advance({functions}, model, settings, until, clock, q, u, rng, point_loss, point_interval,",
-            "                    history, events, ws)",
-        ]
-    )
+    return "\n".join(header) + "\n\n\n" + "\n\n\n".join(functions) + "\n"
 
 
 def _comment_text(name: str) -> str:

@@ -14,6 +14,7 @@ generating a module's text does (:mod:`mbds.expr.codegen`).
 
 from __future__ import annotations
 
+import functools
 import json
 import platform
 import sys
@@ -39,7 +40,7 @@ class CompiledModel:
     dependent_jacobian: Callable
     mechanical_energy: Callable
     contact_law: Callable
-    advance: Callable  # the time stepper bound to these functions (compiled on first call)
+    advance: Callable  # the kernel's time stepper bound to these functions
     n: int  # generalized coordinates
     m: int  # dependent coordinates
     n_contact_laws: int
@@ -55,10 +56,14 @@ class CompiledModel:
 def load_compiled(path: Path, key: str) -> CompiledModel:
     """The compiled model of the module at ``path`` (of structure ``key``), imported once per
     process."""
+    from mbds.expr.function_address import FunctionAddress  # (numba: only where a model is loaded)
+    from mbds.kernel.stepper import advance  # (compiled or loaded from the kernel's cache on its first call)
+
     module = cache.load(path)
+    functions = {name: getattr(module, name) for name in GENERATED_FUNCTIONS}
     return CompiledModel(
-        **{name: getattr(module, name) for name in GENERATED_FUNCTIONS},
-        advance=module.advance,
+        **functions,
+        advance=functools.partial(advance, *(FunctionAddress(functions[name]) for name in GENERATED_FUNCTIONS)),
         n=module.N,
         m=module.M,
         n_contact_laws=module.CONTACT_LAWS,

@@ -408,7 +408,7 @@ def _negative(q):
     return False
 
 
-@jit(refcount=False)
+@jit(inline="always")
 def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active, one LCP per group of coupled
     contacts (mbds.kernel.components: pb.active is reordered by group), and the accelerations

@@ -100,13 +100,16 @@ from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, r
 from mbds.kernel.sampling import sample
 
 
-@jit(inline="always")
+@jit(refcount=False)
 def advance(
     mass_matrix, h_vector, dependent_state, dependent_jacobian, mechanical_energy, contact_law,
     model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws,
 ):
     """Integrate until time ``until`` (s) or until a buffer fills; return a status.
 
+    mass_matrix ... contact_law: the model's functions (mbds.expr.codegen), as numba's
+    first-class function values: compiled once, the stepper serves every model (the calls go
+    through the functions' addresses);
     model: ModelArrays; settings (SETTINGS,); clock (CLOCK,) time, step and counters; q, u (n,);
     rng: uint64 (1,); point_loss (P,) lost work accumulated per shape point (J); point_interval
     (P, POINT_COLUMNS) impulses (N s), lost work (J) and contact angle (rad) per point since the

@@ -74,9 +74,9 @@ def test_the_compiled_mark(tmp_path, cache):
     assert not known.compiled(key)  # another numba compiled it
     known.mark_compiled(key)
     assert known.compiled(key)
-    index = sorted((cache / "__pycache__").glob(f"mbds_model_{key}.advance-*.nbi"))
+    index = sorted((cache / "__pycache__").glob(f"mbds_model_{key}.mass_matrix-*.nbi"))
     moved = index[0].rename(index[0].with_suffix(".away"))
-    assert not known.compiled(key)  # numba's index of the stepper is gone
+    assert not known.compiled(key)  # numba's index of the mass matrix is gone
     moved.rename(index[0])
     module = cache / f"mbds_model_{key}.py"
     os.utime(module, (marker.stat().st_mtime + 10,) * 2)
