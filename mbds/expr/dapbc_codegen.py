@@ -11,25 +11,29 @@ par: parameters; fv: (nFunct, 3) values f, f', f'' of the driver functions at t)
   after the ``user`` element to h
 - ``potential_energy(q, par)``: J
 
-then the user force (compiled MATLAB subset or the model's Python function) and the analyses of
-mbds.kernel bound to these functions: ``evaluate``, ``forward_dopri5``, ``forward_stiff``,
-``post``, ``correct``, ``kinematic_state``, ``inverse_multipliers``, ``static_equilibrium``.
-Parameter values are not part of the text, so its hash (the cache key) depends on the model's
-structure only; the kernel's source hash is part of it too.
+then the user force (compiled MATLAB subset or the model's Python function), each compiled for
+one signature. :func:`compile_dapbc` binds the analyses of mbds.kernel.dapbc_analyses (compiled
+once for all models) to these functions. Parameter values are not part of the text, so its hash
+(the cache key) depends on the model's structure only; the kernel's source hash is part of it
+too (a user force calls the kernel's library, mbds.kernel.dapbc_library).
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from pathlib import Path
-from types import ModuleType
+from types import ModuleType, SimpleNamespace
 
 import sympy
 
 from mbds._version import version as mbds_version
 from mbds.expr import cache
 from mbds.expr.codegen import _assign
+from mbds.expr.function_address import FunctionAddress
 from mbds.expr.printer import NumbaPrinter
+from mbds.kernel.dapbc_analyses import ANALYSES
+from mbds.kernel.dapbc_layout import DapbcFunctions
 from mbds.kernel.jit import kernel_source_hash
 
 
@@ -67,13 +71,21 @@ USER_FORCE_TYPES = (f"void(float64, {_M}, {_V}, {_M}, {_V}, float64[:, :, ::1], 
                     f"{_M}, {_V})")
 
 
-#: explicit signatures (compiled when the module is imported, so that the analyses bound to
-#: these functions can be cached) and IEEE arithmetic without exceptions, as mbds.expr.codegen
+#: explicit signatures (compiled when the module is imported, so that the kernel's analyses can
+#: call them through their addresses) and IEEE arithmetic without exceptions, as mbds.expr.codegen
 
 
 def _decorator(types: str) -> str:
     return f'@jit("{types}", error_model="numpy")'
 
+
+#: after a user force's source: compiled for its one signature (a Python user force that is a numba
+#: function already keeps its options)
+_ONE_SIGNATURE = f'''
+
+_options = user_force.targetoptions if isinstance(user_force, _Dispatcher) else {{}}
+user_force = jit({USER_FORCE_TYPES!r}, **{{"error_model": "numpy", **_options}})(getattr(user_force, "py_func", user_force))
+'''
 
 _NO_USER_FORCE = f'''
 {_decorator(USER_FORCE_TYPES)}
@@ -81,87 +93,6 @@ def user_force(t, r, p, r_d, p_d, A, rP, rP_d, sP, fields, state, f, n):
     """The model has no user force element (never called: data.has_user is 0)."""
     return None
 '''
-
-_BINDINGS = '''
-from mbds.kernel import dapbc_equations as _eq  # noqa: E402
-from mbds.kernel.dopri5 import dopri5 as _dopri5  # noqa: E402
-from mbds.kernel.rosenbrock import rosenbrock23 as _rosenbrock23  # noqa: E402
-
-
-@jit
-def evaluate(t, y, data, state, yd):
-    """yd = (qd, qdd) of y = (q, qd) at time t (s)."""
-    _eq.accelerations(jacobian, acceleration_rhs, forces_before, forces_after, user_force, t, y, data, state,
-                      yd, np.empty(NC), np.empty((NC, N)))
-
-
-@jit
-def project(t, y, data):
-    """y = (q, qd) moved onto the constraints at time t: Newton on the coordinates, then the
-    velocities (the initial-condition correction)."""
-    q, qd = y[:N].copy(), y[N:].copy()
-    _eq.correct_positions(constraints, jacobian, NC, q, t, data.par, data.functs, PROJECTION_TOLERANCE)
-    _eq.correct_velocities(jacobian, velocity_rhs, NC, q, qd, t, data.par, data.functs)
-    y[:N] = q
-    y[N:] = qd
-
-
-@jit
-def forward_dopri5(projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
-    """Forward dynamics with the Dormand-Prince 5(4) pair (mbds.kernel.dopri5)."""
-    return _dopri5(evaluate, project, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index)
-
-
-@jit
-def forward_stiff(projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
-    """Forward dynamics with the Rosenbrock 2(3) pair (mbds.kernel.rosenbrock)."""
-    return _rosenbrock23(evaluate, project, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state,
-                         stop_index)
-
-
-@jit
-def post(times, Y, states, data, out):
-    """DAP_BC's post arrays of the reports (mbds.kernel.dapbc_equations.post)."""
-    _eq.post(jacobian, acceleration_rhs, forces_before, forces_after, user_force, potential_energy,
-             times, Y, states, data, out)
-
-
-@jit
-def correct(q, qd, t, par, functs, tolerance):
-    """DAP_BC's initial-condition correction in place; returns the Newton iterations (-1: failed)."""
-    iterations = _eq.correct_positions(constraints, jacobian, NC, q, t, par, functs, tolerance)
-    _eq.correct_velocities(jacobian, velocity_rhs, NC, q, qd, t, par, functs)
-    return iterations
-
-
-@jit
-def constraint_values(q, t, par, functs, out):
-    """Phi at (q, t) into out."""
-    fv = np.empty((functs.shape[0], 3))
-    _eq.funct_values(functs, t, fv)
-    constraints(q, t, par, fv, out)
-
-
-@jit
-def kinematic_state(q, qd, qdd, t, par, functs, tolerance):
-    """Kinematic analysis at time t (mbds.kernel.dapbc_equations.kinematic_state)."""
-    return _eq.kinematic_state(constraints, jacobian, velocity_rhs, acceleration_rhs, NC, q, qd, qdd, t, par,
-                               functs, tolerance)
-
-
-@jit
-def inverse_multipliers(t, q, qd, qdd, data, state, lam, D):
-    """Inverse dynamics: lam from D^T lam = M qdd - h."""
-    _eq.inverse_multipliers(jacobian, forces_before, forces_after, user_force, t, q, qd, qdd, data, state, lam, D)
-
-
-@jit
-def static_equilibrium(t, x, data, state, tolerance):
-    """Static equilibrium by Newton's method from x = (q, lam)."""
-    return _eq.static_equilibrium(constraints, jacobian, forces_before, forces_after, user_force, t, x, data,
-                                  state, tolerance)
-'''
-
 
 def generate_source(e: DapbcExpressions) -> str:
     """The module's text; the same structure always gives the same text."""
@@ -190,8 +121,7 @@ def generate_source(e: DapbcExpressions) -> str:
     if e.user_source is None:
         user = _NO_USER_FORCE
     else:
-        user = (e.user_imports + "\n" + e.user_source
-                + "\n\nif not isinstance(user_force, _Dispatcher):\n    user_force = jit(" + repr(USER_FORCE_TYPES) + ", error_model='numpy')(user_force)\n")
+        user = e.user_imports + "\n" + e.user_source + _ONE_SIGNATURE
     header = [
         f"# Generated by mbds {mbds_version()} (mbds.expr.dapbc_codegen) from a DAP_BC model. Do not edit:",
         "# the file is named after the hash of its text, and numba caches its machine code in __pycache__.",
@@ -205,13 +135,24 @@ def generate_source(e: DapbcExpressions) -> str:
         "",
         f"N = {e.n}  # coordinates (3 per body)",
         f"NC = {nc}  # constraint equations",
-        "PROJECTION_TOLERANCE = 1e-12  # max |Phi| (m, rad) after a projection",
     ]
-    return "\n".join(header) + "\n\n\n" + "\n\n\n".join(functions) + "\n\n" + user + "\n" + _BINDINGS
+    return "\n".join(header) + "\n\n\n" + "\n\n\n".join(functions) + "\n\n" + user
 
 
-def compile_dapbc(expressions: DapbcExpressions, cache_dir: Path | None = None) -> ModuleType:
-    """Store the module in the cache (default mbds.expr.cache.default_cache_dir) and import it."""
+def compile_dapbc(expressions: DapbcExpressions, cache_dir: Path | None = None) -> SimpleNamespace:
+    """Store the module in the cache (default mbds.expr.cache.default_cache_dir), import it and
+    return the analyses of mbds.kernel.dapbc_analyses bound to its functions (the same object
+    for the same module): ``forward_dopri5``, ``forward_stiff``, ``post``, ``correct``,
+    ``kinematic_state``, ``inverse_multipliers``, ``static_equilibrium``, called as the kernel's
+    functions without their first argument."""
     source = generate_source(expressions)
     path = cache.store(source, Path(cache_dir) if cache_dir is not None else cache.default_cache_dir())
-    return cache.load(path)
+    return _bound(cache.load(path))
+
+
+@functools.cache
+def _bound(module: ModuleType) -> SimpleNamespace:
+    """The kernel's DAP_BC analyses bound to the functions of ``module``."""
+    functions = DapbcFunctions(*(FunctionAddress(getattr(module, name)) for name in DapbcFunctions._fields[:-1]),
+                               nc=module.NC)
+    return SimpleNamespace(**{f.__name__: functools.partial(f, functions) for f in ANALYSES})

@@ -1,0 +1,94 @@
+"""DAP_BC's analyses for any model, compiled once and cached with the kernel.
+
+Each takes the model's generated functions as its first argument, a DapbcFunctions bundle
+(mbds.kernel.dapbc_layout) of numba first-class function values, which it calls through their
+addresses; the equations are those of mbds.kernel.dapbc_equations. A model of a new structure
+therefore compiles only its own functions. Units: SI; arrays float64, C-contiguous.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mbds.kernel import dapbc_equations as eq
+from mbds.kernel.dopri5 import dopri5
+from mbds.kernel.jit import jit
+from mbds.kernel.rosenbrock import rosenbrock23
+
+PROJECTION_TOLERANCE = 1e-12
+"""Largest |Phi| (m, rad) left by the projection of forward dynamics onto the constraints."""
+
+
+@jit
+def _evaluate(t, y, model, state, yd):
+    """yd = (qd, qdd) of y = (q, qd) at time t (s); model: (DapbcFunctions, DapbcData)."""
+    f, data = model
+    eq.accelerations(f.jacobian, f.acceleration_rhs, f.forces_before, f.forces_after, f.user_force, t, y, data,
+                     state, yd, np.empty(f.nc), np.empty((f.nc, y.shape[0] // 2)))
+
+
+@jit
+def _project(t, y, model):
+    """y = (q, qd) moved onto the constraints at time t: Newton on the coordinates, then the
+    velocities (the initial-condition correction); model: (DapbcFunctions, DapbcData)."""
+    f, data = model
+    n = y.shape[0] // 2
+    q, qd = y[:n].copy(), y[n:].copy()
+    eq.correct_positions(f.constraints, f.jacobian, f.nc, q, t, data.par, data.functs, PROJECTION_TOLERANCE)
+    eq.correct_velocities(f.jacobian, f.velocity_rhs, f.nc, q, qd, t, data.par, data.functs)
+    y[:n] = q
+    y[n:] = qd
+
+
+@jit
+def forward_dopri5(f, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
+    """Forward dynamics with the Dormand-Prince 5(4) pair (mbds.kernel.dopri5)."""
+    return dopri5(_evaluate, _project, projecting, (f, data), state, t_out, rtol, atol, integ, out_y, out_state,
+                  stop_index)
+
+
+@jit
+def forward_stiff(f, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
+    """Forward dynamics with the Rosenbrock 2(3) pair (mbds.kernel.rosenbrock)."""
+    return rosenbrock23(_evaluate, _project, projecting, (f, data), state, t_out, rtol, atol, integ, out_y,
+                        out_state, stop_index)
+
+
+@jit
+def post(f, times, Y, states, data, out):
+    """DAP_BC's post arrays of the reports (mbds.kernel.dapbc_equations.post)."""
+    eq.post(f.jacobian, f.acceleration_rhs, f.forces_before, f.forces_after, f.user_force, f.potential_energy,
+            times, Y, states, data, out)
+
+
+@jit
+def correct(f, q, qd, t, par, functs, tolerance):
+    """DAP_BC's initial-condition correction in place; returns the Newton iterations (-1: failed)."""
+    iterations = eq.correct_positions(f.constraints, f.jacobian, f.nc, q, t, par, functs, tolerance)
+    eq.correct_velocities(f.jacobian, f.velocity_rhs, f.nc, q, qd, t, par, functs)
+    return iterations
+
+
+@jit
+def kinematic_state(f, q, qd, qdd, t, par, functs, tolerance):
+    """Kinematic analysis at time t (mbds.kernel.dapbc_equations.kinematic_state)."""
+    return eq.kinematic_state(f.constraints, f.jacobian, f.velocity_rhs, f.acceleration_rhs, f.nc, q, qd, qdd, t,
+                              par, functs, tolerance)
+
+
+@jit
+def inverse_multipliers(f, t, q, qd, qdd, data, state, lam, D):
+    """Inverse dynamics: lam from D^T lam = M qdd - h."""
+    eq.inverse_multipliers(f.jacobian, f.forces_before, f.forces_after, f.user_force, t, q, qd, qdd, data, state,
+                           lam, D)
+
+
+@jit
+def static_equilibrium(f, t, x, data, state, tolerance):
+    """Static equilibrium by Newton's method from x = (q, lam)."""
+    return eq.static_equilibrium(f.constraints, f.jacobian, f.forces_before, f.forces_after, f.user_force, t, x,
+                                 data, state, tolerance)
+
+
+ANALYSES = (forward_dopri5, forward_stiff, post, correct, kinematic_state, inverse_multipliers, static_equilibrium)
+"""The functions a model's compiled module is bound to (mbds.expr.dapbc_codegen)."""
