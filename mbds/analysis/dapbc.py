@@ -112,7 +112,8 @@ def forward(system: DapbcSystem, settings: DapbcSettings, progress: Callable | N
     states = np.zeros((len(times), system.n_state))
     state = np.zeros(system.n_state)
     step = system.module.forward_dopri5 if settings.method == "dopri5" else system.module.forward_stiff
-    stride = max(1, len(times) // PROGRESS_UPDATES)
+    # (the integration resumes exactly where a stretch ended; without progress, one stretch)
+    stride = max(1, len(times) // PROGRESS_UPDATES) if progress is not None else len(times)
     stop = 0
     while stop < len(times) - 1:
         stop = min(stop + stride, len(times) - 1)

@@ -56,14 +56,15 @@ class CompiledModel:
 def load_compiled(path: Path, key: str) -> CompiledModel:
     """The compiled model of the module at ``path`` (of structure ``key``), imported once per
     process."""
-    from mbds.expr.function_address import FunctionAddress  # (numba: only where a model is loaded)
-    from mbds.kernel.stepper import advance  # (compiled or loaded from the kernel's cache on its first call)
+    from mbds.kernel.function_table import address_table  # (numba: only where a model is loaded)
+    from mbds.kernel.stepper import MODEL_FUNCTIONS, advance  # (compiled or loaded from the kernel's cache on its first call)
 
     module = cache.load(path)
     functions = {name: getattr(module, name) for name in GENERATED_FUNCTIONS}
     return CompiledModel(
         **functions,
-        advance=functools.partial(advance, *(FunctionAddress(functions[name]) for name in GENERATED_FUNCTIONS)),
+        advance=functools.partial(advance, address_table([functions[name] for name in MODEL_FUNCTIONS],
+                                                         list(MODEL_FUNCTIONS.values()))),
         n=module.N,
         m=module.M,
         n_contact_laws=module.CONTACT_LAWS,

@@ -30,10 +30,9 @@ import sympy
 from mbds._version import version as mbds_version
 from mbds.expr import cache
 from mbds.expr.codegen import _assign
-from mbds.expr.function_address import FunctionAddress
 from mbds.expr.printer import NumbaPrinter
-from mbds.kernel.dapbc_analyses import ANALYSES
-from mbds.kernel.dapbc_layout import DapbcFunctions
+from mbds.kernel.dapbc_analyses import ANALYSES, DAPBC_FUNCTIONS
+from mbds.kernel.function_table import address_table
 from mbds.kernel.jit import kernel_source_hash
 
 
@@ -144,7 +143,7 @@ def compile_dapbc(expressions: DapbcExpressions, cache_dir: Path | None = None) 
     return the analyses of mbds.kernel.dapbc_analyses bound to its functions (the same object
     for the same module): ``forward_dopri5``, ``forward_stiff``, ``post``, ``correct``,
     ``kinematic_state``, ``inverse_multipliers``, ``static_equilibrium``, called as the kernel's
-    functions without their first argument."""
+    functions without their first two arguments (the function table and nc)."""
     source = generate_source(expressions)
     path = cache.store(source, Path(cache_dir) if cache_dir is not None else cache.default_cache_dir())
     return _bound(cache.load(path))
@@ -153,6 +152,7 @@ def compile_dapbc(expressions: DapbcExpressions, cache_dir: Path | None = None) 
 @functools.cache
 def _bound(module: ModuleType) -> SimpleNamespace:
     """The kernel's DAP_BC analyses bound to the functions of ``module``."""
-    functions = DapbcFunctions(*(FunctionAddress(getattr(module, name)) for name in DapbcFunctions._fields[:-1]),
-                               nc=module.NC)
-    return SimpleNamespace(**{f.__name__: functools.partial(f, functions) for f in ANALYSES})
+    table = address_table([getattr(module, name) for name in DAPBC_FUNCTIONS], list(DAPBC_FUNCTIONS.values()))
+    bound = SimpleNamespace(**{f.__name__: functools.partial(f, table, module.NC) for f in ANALYSES})
+    bound.module = module  # (keeps the functions of the table alive)
+    return bound

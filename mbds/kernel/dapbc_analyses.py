@@ -1,19 +1,44 @@
 """DAP_BC's analyses for any model, compiled once and cached with the kernel.
 
-Each takes the model's generated functions as its first argument, a DapbcFunctions bundle
-(mbds.kernel.dapbc_layout) of numba first-class function values, which it calls through their
-addresses; the equations are those of mbds.kernel.dapbc_equations. A model of a new structure
+Each takes the table of the model's generated functions (rows: DAPBC_FUNCTIONS; see
+mbds.kernel.function_table) and its number of constraint equations nc as its first two
+arguments; the equations are those of mbds.kernel.dapbc_equations. A model of a new structure
 therefore compiles only its own functions. Units: SI; arrays float64, C-contiguous.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba import types
 
 from mbds.kernel import dapbc_equations as eq
+from mbds.kernel.dapbc_layout import DapbcFunctions
 from mbds.kernel.dopri5 import dopri5
+from mbds.kernel.function_table import M, V, function_at
 from mbds.kernel.jit import jit
 from mbds.kernel.rosenbrock import rosenbrock23
+
+_F8 = types.float64
+DAPBC_FUNCTIONS = {
+    "constraints": types.void(V, _F8, V, M, V),
+    "jacobian": types.void(V, _F8, V, M, M),
+    "velocity_rhs": types.void(V, _F8, V, M, V),
+    "acceleration_rhs": types.void(V, V, _F8, V, M, V),
+    "forces_before": types.void(V, V, _F8, V, M, V),
+    "forces_after": types.void(V, V, _F8, V, M, V),
+    "user_force": types.void(_F8, M, V, M, V, types.float64[:, :, ::1], M, M, M, M, V, M, V),
+    "potential_energy": _F8(V, V),
+}
+"""The rows of a DAP_BC model's function table and their signatures: the functions of
+mbds.expr.dapbc_codegen."""
+_PHI, _D, _NU, _GAMMA, _BEFORE, _AFTER, _USER, _ENERGY = (function_at(s) for s in DAPBC_FUNCTIONS.values())
+
+
+@jit(inline="always")
+def _functions(table, nc):
+    """The model's functions of ``table`` as a DapbcFunctions bundle."""
+    return DapbcFunctions(_PHI(table, 0), _D(table, 1), _NU(table, 2), _GAMMA(table, 3), _BEFORE(table, 4),
+                          _AFTER(table, 5), _USER(table, 6), _ENERGY(table, 7), nc)
 
 PROJECTION_TOLERANCE = 1e-12
 """Largest |Phi| (m, rad) left by the projection of forward dynamics onto the constraints."""
@@ -41,51 +66,58 @@ def _project(t, y, model):
 
 
 @jit
-def forward_dopri5(f, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
+def forward_dopri5(table, nc, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
     """Forward dynamics with the Dormand-Prince 5(4) pair (mbds.kernel.dopri5)."""
+    f = _functions(table, nc)
     return dopri5(_evaluate, _project, projecting, (f, data), state, t_out, rtol, atol, integ, out_y, out_state,
                   stop_index)
 
 
 @jit
-def forward_stiff(f, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
+def forward_stiff(table, nc, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
     """Forward dynamics with the Rosenbrock 2(3) pair (mbds.kernel.rosenbrock)."""
+    f = _functions(table, nc)
     return rosenbrock23(_evaluate, _project, projecting, (f, data), state, t_out, rtol, atol, integ, out_y,
                         out_state, stop_index)
 
 
 @jit
-def post(f, times, Y, states, data, out):
+def post(table, nc, times, Y, states, data, out):
     """DAP_BC's post arrays of the reports (mbds.kernel.dapbc_equations.post)."""
+    f = _functions(table, nc)
     eq.post(f.jacobian, f.acceleration_rhs, f.forces_before, f.forces_after, f.user_force, f.potential_energy,
             times, Y, states, data, out)
 
 
 @jit
-def correct(f, q, qd, t, par, functs, tolerance):
+def correct(table, nc, q, qd, t, par, functs, tolerance):
     """DAP_BC's initial-condition correction in place; returns the Newton iterations (-1: failed)."""
+    f = _functions(table, nc)
     iterations = eq.correct_positions(f.constraints, f.jacobian, f.nc, q, t, par, functs, tolerance)
     eq.correct_velocities(f.jacobian, f.velocity_rhs, f.nc, q, qd, t, par, functs)
     return iterations
 
 
 @jit
-def kinematic_state(f, q, qd, qdd, t, par, functs, tolerance):
+def kinematic_state(table, nc, q, qd, qdd, t, par, functs, tolerance):
     """Kinematic analysis at time t (mbds.kernel.dapbc_equations.kinematic_state)."""
+    f = _functions(table, nc)
     return eq.kinematic_state(f.constraints, f.jacobian, f.velocity_rhs, f.acceleration_rhs, f.nc, q, qd, qdd, t,
                               par, functs, tolerance)
 
 
 @jit
-def inverse_multipliers(f, t, q, qd, qdd, data, state, lam, D):
+def inverse_multipliers(table, nc, t, q, qd, qdd, data, state, lam, D):
     """Inverse dynamics: lam from D^T lam = M qdd - h."""
+    f = _functions(table, nc)
     eq.inverse_multipliers(f.jacobian, f.forces_before, f.forces_after, f.user_force, t, q, qd, qdd, data, state,
                            lam, D)
 
 
 @jit
-def static_equilibrium(f, t, x, data, state, tolerance):
+def static_equilibrium(table, nc, t, x, data, state, tolerance):
     """Static equilibrium by Newton's method from x = (q, lam)."""
+    f = _functions(table, nc)
     return eq.static_equilibrium(f.constraints, f.jacobian, f.forces_before, f.forces_after, f.user_force, t, x,
                                  data, state, tolerance)
 

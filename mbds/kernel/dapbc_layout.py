@@ -40,7 +40,8 @@ def post_arrays(nt: int, n: int, nc: int, n_points: int) -> DapbcPost:
                      np.zeros((nt, n_points, 2)), np.zeros((nt, n_points, 2)), np.zeros((nt, 3)))
 
 #: A DAP_BC model's generated functions (mbds.expr.dapbc_codegen) as numba's first-class function
-#: values, and nc, its number of constraint equations: what mbds.kernel.dapbc_analyses calls.
+#: values (from its function table, mbds.kernel.function_table), and nc, its number of constraint
+#: equations: what mbds.kernel.dapbc_analyses passes to the equations.
 DapbcFunctions = namedtuple(
     "DapbcFunctions",
     "constraints jacobian velocity_rhs acceleration_rhs forces_before forces_after user_force potential_energy nc",

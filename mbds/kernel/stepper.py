@@ -55,7 +55,10 @@ from mbds.kernel.detection import (
     tracked_depth,
     world_points,
 )
+from numba import types
+
 from mbds.kernel.events import log_event
+from mbds.kernel.function_table import M, V, function_at
 from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
@@ -99,23 +102,34 @@ from mbds.kernel.random import uniform
 from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, record
 from mbds.kernel.sampling import sample
 
+MODEL_FUNCTIONS = {
+    "mass_matrix": types.void(V, types.float64, V, M),
+    "h_vector": types.void(V, V, types.float64, V, V),
+    "dependent_state": types.void(V, V, V, types.float64, V, V, V, V),
+    "dependent_jacobian": types.void(V, V, types.float64, V, M, V),
+    "mechanical_energy": types.float64(V, V, types.float64, V),
+    "contact_law": types.void(types.int64, types.float64, types.float64, V, V),
+}
+"""The rows of a model's function table (mbds.kernel.function_table) and their signatures: the
+functions of mbds.expr.codegen."""
+_MASS_MATRIX, _H_VECTOR, _DEPENDENT_STATE, _DEPENDENT_JACOBIAN, _MECHANICAL_ENERGY, _CONTACT_LAW = (
+    function_at(signature) for signature in MODEL_FUNCTIONS.values())
 
 @jit(refcount=False)
-def advance(
-    mass_matrix, h_vector, dependent_state, dependent_jacobian, mechanical_energy, contact_law,
-    model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws,
-):
+def advance(functions, model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):
     """Integrate until time ``until`` (s) or until a buffer fills; return a status.
 
-    mass_matrix ... contact_law: the model's functions (mbds.expr.codegen), as numba's
-    first-class function values: compiled once, the stepper serves every model (the calls go
-    through the functions' addresses);
+    functions: the table of the model's functions (rows: MODEL_FUNCTIONS), so that the stepper,
+    compiled once, serves every model;
     model: ModelArrays; settings (SETTINGS,); clock (CLOCK,) time, step and counters; q, u (n,);
     rng: uint64 (1,); point_loss (P,) lost work accumulated per shape point (J); point_interval
     (P, POINT_COLUMNS) impulses (N s), lost work (J) and contact angle (rad) per point since the
     last history sample; history: History; events: Events; ws: Workspace (all in
     mbds.kernel.layout).
     """
+    mass_matrix, h_vector = _MASS_MATRIX(functions, 0), _H_VECTOR(functions, 1)
+    dependent_state, dependent_jacobian = _DEPENDENT_STATE(functions, 2), _DEPENDENT_JACOBIAN(functions, 3)
+    mechanical_energy, contact_law = _MECHANICAL_ENERGY(functions, 4), _CONTACT_LAW(functions, 5)
     bodies, contacts, rows, dyn, pb, forces, back = ws
     a1, a2 = forces.a1, forces.a2
     n = q.shape[0]
