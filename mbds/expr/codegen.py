@@ -31,19 +31,10 @@ from mbds.expr import cache
 from mbds.expr.compiled import CompiledModel, load_compiled
 from mbds.expr.model import DependentCoordinate, ModelExpressions, resolve
 from mbds.expr.printer import NumbaPrinter
+from mbds.kernel.layout import MODEL_FUNCTIONS
 
 __all__ = ["CompiledModel", "DependentCoordinate", "ModelExpressions", "compile_model", "generate_source"]
 
-_V = "float64[::1]"
-_M = "float64[:, ::1]"
-SIGNATURES = {
-    "mass_matrix": f"void({_V}, float64, {_V}, {_M})",
-    "h_vector": f"void({_V}, {_V}, float64, {_V}, {_V})",
-    "dependent_state": f"void({_V}, {_V}, {_V}, float64, {_V}, {_V}, {_V}, {_V})",
-    "dependent_jacobian": f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
-    "mechanical_energy": f"float64({_V}, {_V}, float64, {_V})",
-    "contact_law": f"void(int64, float64, float64, {_V}, {_V})",
-}
 _ARGUMENTS = {
     "mass_matrix": "q, t, p, out",
     "h_vector": "q, qd, t, p, out",
@@ -125,7 +116,7 @@ def _comment_text(name: str) -> str:
 
 def _function(name: str, body: list[str]) -> str:
     lines = [
-        f'@jit("{SIGNATURES[name]}", fastmath=False, error_model="numpy")',
+        f'@jit("{MODEL_FUNCTIONS[name]}", fastmath=False, error_model="numpy")',
         f"def {name}({_ARGUMENTS[name]}):",
         f'    """{_DOCS[name]}"""',
         *(f"    {line}" for line in body),

@@ -57,7 +57,8 @@ def load_compiled(path: Path, key: str) -> CompiledModel:
     """The compiled model of the module at ``path`` (of structure ``key``), imported once per
     process."""
     from mbds.kernel.function_table import address_table  # (numba: only where a model is loaded)
-    from mbds.kernel.stepper import MODEL_FUNCTIONS, advance  # (compiled or loaded from the kernel's cache on its first call)
+    from mbds.kernel.layout import MODEL_FUNCTIONS
+    from mbds.kernel.stepper import advance  # (compiled or loaded from the kernel's cache on its first call)
 
     module = cache.load(path)
     functions = {name: getattr(module, name) for name in GENERATED_FUNCTIONS}

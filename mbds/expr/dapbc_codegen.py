@@ -31,7 +31,8 @@ from mbds._version import version as mbds_version
 from mbds.expr import cache
 from mbds.expr.codegen import _assign
 from mbds.expr.printer import NumbaPrinter
-from mbds.kernel.dapbc_analyses import ANALYSES, DAPBC_FUNCTIONS
+from mbds.kernel.dapbc_analyses import ANALYSES
+from mbds.kernel.dapbc_layout import DAPBC_FUNCTIONS
 from mbds.kernel.function_table import address_table
 from mbds.kernel.jit import kernel_source_hash
 
@@ -53,21 +54,15 @@ class DapbcExpressions:
     user_source: str | None
 
 
-_V, _M = "float64[::1]", "float64[:, ::1]"
-_FUNCTIONS = (
-    ("constraints", "q, t, par, fv, out", f"void({_V}, float64, {_V}, {_M}, {_V})", "Constraint equations Phi into out."),
-    ("jacobian", "q, t, par, fv, D", f"void({_V}, float64, {_V}, {_M}, {_M})", "Jacobian D = dPhi/dq into D."),
-    ("velocity_rhs", "q, t, par, fv, out", f"void({_V}, float64, {_V}, {_M}, {_V})", "nu (D qd = nu) into out."),
-    ("acceleration_rhs", "q, qd, t, par, fv, out", f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
-     "gamma (D qdd = gamma) into out."),
-    ("forces_before", "q, qd, t, par, fv, out", f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
-     "Add the force elements before the user element to out."),
-    ("forces_after", "q, qd, t, par, fv, out", f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
-     "Add the force elements after the user element to out."),
+_FUNCTIONS = (  # name, arguments, doc; signatures: mbds.kernel.dapbc_layout.DAPBC_FUNCTIONS
+    ("constraints", "q, t, par, fv, out", "Constraint equations Phi into out."),
+    ("jacobian", "q, t, par, fv, D", "Jacobian D = dPhi/dq into D."),
+    ("velocity_rhs", "q, t, par, fv, out", "nu (D qd = nu) into out."),
+    ("acceleration_rhs", "q, qd, t, par, fv, out", "gamma (D qdd = gamma) into out."),
+    ("forces_before", "q, qd, t, par, fv, out", "Add the force elements before the user element to out."),
+    ("forces_after", "q, qd, t, par, fv, out", "Add the force elements after the user element to out."),
 )
-#: the user force's signature (mbds.io.dapbc.user_force.SIGNATURE)
-USER_FORCE_TYPES = (f"void(float64, {_M}, {_V}, {_M}, {_V}, float64[:, :, ::1], {_M}, {_M}, {_M}, {_M}, {_V}, "
-                    f"{_M}, {_V})")
+USER_FORCE_TYPES = DAPBC_FUNCTIONS["user_force"]
 
 
 #: explicit signatures (compiled when the module is imported, so that the kernel's analyses can
@@ -109,12 +104,12 @@ def generate_source(e: DapbcExpressions) -> str:
         lines = _assign(printer, [f"add{i}" for i in range(len(pairs))], [x for _, x in pairs])
         bodies[name] = lines + [f"{target} += add{i}" for i, (target, _) in enumerate(pairs)]
     functions = []
-    for name, arguments, types, doc in _FUNCTIONS:
+    for name, arguments, doc in _FUNCTIONS:
         body = bodies[name] or ["return None"]
-        functions.append("\n".join([_decorator(types), f"def {name}({arguments}):", f'    """{doc}"""',
+        functions.append("\n".join([_decorator(DAPBC_FUNCTIONS[name]), f"def {name}({arguments}):", f'    """{doc}"""',
                                     *(f"    {line}" for line in body)]))
     energy = _assign(printer, ["energy"], [e.potential]) + ["return energy"]
-    functions.append("\n".join([_decorator(f"float64({_V}, {_V})"), "def potential_energy(q, par):",
+    functions.append("\n".join([_decorator(DAPBC_FUNCTIONS["potential_energy"]), "def potential_energy(q, par):",
                                 '    """Potential energy (J) of gravity and the linear springs."""',
                                 *(f"    {line}" for line in energy)]))
     if e.user_source is None:

@@ -1,7 +1,7 @@
 """DAP_BC's analyses for any model, compiled once and cached with the kernel.
 
-Each takes the table of the model's generated functions (rows: DAPBC_FUNCTIONS; see
-mbds.kernel.function_table) and its number of constraint equations nc as its first two
+Each takes the table of the model's generated functions (rows: mbds.kernel.dapbc_layout.
+DAPBC_FUNCTIONS; see mbds.kernel.function_table) and its number of constraint equations nc as its first two
 arguments; the equations are those of mbds.kernel.dapbc_equations. A model of a new structure
 therefore compiles only its own functions. Units: SI; arrays float64, C-contiguous.
 """
@@ -9,28 +9,14 @@ therefore compiles only its own functions. Units: SI; arrays float64, C-contiguo
 from __future__ import annotations
 
 import numpy as np
-from numba import types
 
 from mbds.kernel import dapbc_equations as eq
-from mbds.kernel.dapbc_layout import DapbcFunctions
+from mbds.kernel.dapbc_layout import DAPBC_FUNCTIONS, DapbcFunctions
 from mbds.kernel.dopri5 import dopri5
-from mbds.kernel.function_table import M, V, function_at
+from mbds.kernel.function_table import function_at
 from mbds.kernel.jit import jit
 from mbds.kernel.rosenbrock import rosenbrock23
 
-_F8 = types.float64
-DAPBC_FUNCTIONS = {
-    "constraints": types.void(V, _F8, V, M, V),
-    "jacobian": types.void(V, _F8, V, M, M),
-    "velocity_rhs": types.void(V, _F8, V, M, V),
-    "acceleration_rhs": types.void(V, V, _F8, V, M, V),
-    "forces_before": types.void(V, V, _F8, V, M, V),
-    "forces_after": types.void(V, V, _F8, V, M, V),
-    "user_force": types.void(_F8, M, V, M, V, types.float64[:, :, ::1], M, M, M, M, V, M, V),
-    "potential_energy": _F8(V, V),
-}
-"""The rows of a DAP_BC model's function table and their signatures: the functions of
-mbds.expr.dapbc_codegen."""
 _PHI, _D, _NU, _GAMMA, _BEFORE, _AFTER, _USER, _ENERGY = (function_at(s) for s in DAPBC_FUNCTIONS.values())
 
 
@@ -39,6 +25,7 @@ def _functions(table, nc):
     """The model's functions of ``table`` as a DapbcFunctions bundle."""
     return DapbcFunctions(_PHI(table, 0), _D(table, 1), _NU(table, 2), _GAMMA(table, 3), _BEFORE(table, 4),
                           _AFTER(table, 5), _USER(table, 6), _ENERGY(table, 7), nc)
+
 
 PROJECTION_TOLERANCE = 1e-12
 """Largest |Phi| (m, rad) left by the projection of forward dynamics onto the constraints."""

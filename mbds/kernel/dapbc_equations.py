@@ -9,8 +9,8 @@ DAP_BC's (its analysis.m): [M -D^T; D 0] [q''; lam] = [h; gamma], with no stabil
 Units: SI; arrays float64, C-contiguous.
 
 The functions that take the model's functions as arguments are inlined (numba IR) into the
-analyses of mbds.kernel.dapbc_analyses, which receive them as numba first-class function values
-(called through their addresses) and are compiled once for all models.
+analyses of mbds.kernel.dapbc_analyses, which are compiled once for all models and receive them
+through a table of their addresses (mbds.kernel.function_table).
 """
 
 from __future__ import annotations

@@ -39,6 +39,7 @@ def post_arrays(nt: int, n: int, nc: int, n_points: int) -> DapbcPost:
     return DapbcPost(np.zeros((nt, n)), np.zeros((nt, nc)), np.zeros((nt, nc, n)),
                      np.zeros((nt, n_points, 2)), np.zeros((nt, n_points, 2)), np.zeros((nt, 3)))
 
+
 #: A DAP_BC model's generated functions (mbds.expr.dapbc_codegen) as numba's first-class function
 #: values (from its function table, mbds.kernel.function_table), and nc, its number of constraint
 #: equations: what mbds.kernel.dapbc_analyses passes to the equations.
@@ -46,3 +47,18 @@ DapbcFunctions = namedtuple(
     "DapbcFunctions",
     "constraints jacobian velocity_rhs acceleration_rhs forces_before forces_after user_force potential_energy nc",
 )
+
+_V, _M = "float64[::1]", "float64[:, ::1]"
+#: The generated functions with their numba signatures, in the order of DapbcFunctions and of the
+#: rows of a DAP_BC model's function table; the user force's arguments are those of
+#: mbds.io.dapbc.user_force.SIGNATURE.
+DAPBC_FUNCTIONS = {
+    "constraints": f"void({_V}, float64, {_V}, {_M}, {_V})",
+    "jacobian": f"void({_V}, float64, {_V}, {_M}, {_M})",
+    "velocity_rhs": f"void({_V}, float64, {_V}, {_M}, {_V})",
+    "acceleration_rhs": f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
+    "forces_before": f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
+    "forces_after": f"void({_V}, {_V}, float64, {_V}, {_M}, {_V})",
+    "user_force": f"void(float64, {_M}, {_V}, {_M}, {_V}, float64[:, :, ::1], {_M}, {_M}, {_M}, {_M}, {_V}, {_M}, {_V})",
+    "potential_energy": f"float64({_V}, {_V})",
+}

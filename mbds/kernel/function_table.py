@@ -18,19 +18,21 @@ from __future__ import annotations
 import numpy as np
 from numba import types
 from numba.core import cgutils
+from numba.core.sigutils import normalize_signature
 from numba.experimental.function_type import _get_jit_address, _get_wrapper_address
 from numba.extending import intrinsic
 
-V = types.float64[::1]
-"""A C-contiguous float64 vector in a signature."""
-M = types.float64[:, ::1]
-"""A C-contiguous float64 matrix in a signature."""
+
+def signature_of(text: str) -> types.Signature:
+    """numba's signature of a signature string such as ``"float64(float64[::1], int64)"``."""
+    args, return_type = normalize_signature(text)
+    return return_type(*args)
 
 
-def function_at(signature: types.Signature):
+def function_at(signature: str):
     """An accessor ``at(table, i)``, callable from compiled code: row i of a function table as a
-    function of ``signature``."""
-    function_type = types.FunctionType(signature)
+    function of ``signature`` (a signature string)."""
+    function_type = types.FunctionType(signature_of(signature))
 
     @intrinsic
     def at(typingctx, table, row):
@@ -55,9 +57,10 @@ def function_at(signature: types.Signature):
 
 def address_table(dispatchers, signatures) -> np.ndarray:
     """The table (int64, (k, 2)) of numba dispatchers, each compiled for the matching signature
-    of ``signatures``; raises TypeError for a dispatcher without it."""
+    string of ``signatures``; raises TypeError for a dispatcher without it."""
     table = np.zeros((len(dispatchers), 2), np.int64)
-    for row, (dispatcher, signature) in enumerate(zip(dispatchers, signatures, strict=True)):
+    for row, (dispatcher, text) in enumerate(zip(dispatchers, signatures, strict=True)):
+        signature = signature_of(text)
         if signature not in dispatcher.nopython_signatures:
             raise TypeError(f"{dispatcher.__name__} is not compiled for {signature}")
         table[row] = _get_wrapper_address(dispatcher, signature), _get_jit_address(dispatcher, signature)

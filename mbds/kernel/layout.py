@@ -11,6 +11,18 @@ from collections import namedtuple
 
 import numpy as np
 
+VECTOR, MATRIX = "float64[::1]", "float64[:, ::1]"
+MODEL_FUNCTIONS = {
+    "mass_matrix": f"void({VECTOR}, float64, {VECTOR}, {MATRIX})",
+    "h_vector": f"void({VECTOR}, {VECTOR}, float64, {VECTOR}, {VECTOR})",
+    "dependent_state": f"void({VECTOR}, {VECTOR}, {VECTOR}, float64, {VECTOR}, {VECTOR}, {VECTOR}, {VECTOR})",
+    "dependent_jacobian": f"void({VECTOR}, {VECTOR}, float64, {VECTOR}, {MATRIX}, {VECTOR})",
+    "mechanical_energy": f"float64({VECTOR}, {VECTOR}, float64, {VECTOR})",
+    "contact_law": f"void(int64, float64, float64, {VECTOR}, {VECTOR})",
+}
+"""A model's generated functions (mbds.expr.codegen) with their numba signatures, in the order of
+the rows of the function table the stepper takes (mbds.kernel.function_table)."""
+
 # settings array: steps (s), penetration (m), velocity (m/s), LCP tolerances, flags; the passes
 # of the step loop one call of advance may make before it returns (so callers look at Ctrl-C,
 # time limits and progress at least that often)

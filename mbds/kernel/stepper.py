@@ -55,10 +55,8 @@ from mbds.kernel.detection import (
     tracked_depth,
     world_points,
 )
-from numba import types
-
 from mbds.kernel.events import log_event
-from mbds.kernel.function_table import M, V, function_at
+from mbds.kernel.function_table import function_at
 from mbds.kernel.heat import cool
 from mbds.kernel.impact import impact
 from mbds.kernel.jit import jit
@@ -83,6 +81,7 @@ from mbds.kernel.layout import (
     LEXICO_LOW,
     LOST,
     MAX_PEN,
+    MODEL_FUNCTIONS,
     MAX_PENETRATION,
     NEXT_SAMPLE,
     NOT_FINITE,
@@ -102,18 +101,9 @@ from mbds.kernel.random import uniform
 from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, record
 from mbds.kernel.sampling import sample
 
-MODEL_FUNCTIONS = {
-    "mass_matrix": types.void(V, types.float64, V, M),
-    "h_vector": types.void(V, V, types.float64, V, V),
-    "dependent_state": types.void(V, V, V, types.float64, V, V, V, V),
-    "dependent_jacobian": types.void(V, V, types.float64, V, M, V),
-    "mechanical_energy": types.float64(V, V, types.float64, V),
-    "contact_law": types.void(types.int64, types.float64, types.float64, V, V),
-}
-"""The rows of a model's function table (mbds.kernel.function_table) and their signatures: the
-functions of mbds.expr.codegen."""
 _MASS_MATRIX, _H_VECTOR, _DEPENDENT_STATE, _DEPENDENT_JACOBIAN, _MECHANICAL_ENERGY, _CONTACT_LAW = (
     function_at(signature) for signature in MODEL_FUNCTIONS.values())
+
 
 @jit(refcount=False)
 def advance(functions, model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):

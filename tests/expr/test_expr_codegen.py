@@ -16,13 +16,13 @@ import sympy
 
 from mbds.errors import ModelError
 from mbds.expr.codegen import (
-    SIGNATURES,
     DependentCoordinate,
     ModelExpressions,
     compile_model,
     generate_source,
 )
 from mbds.expr.parse import parse_expression
+from mbds.kernel.layout import MODEL_FUNCTIONS
 from mbds.expr.symbols import TEMP, VREL, T, body_coordinate, constant
 
 DIGITS = 30
@@ -160,7 +160,7 @@ def test_new_parameters_reuse_the_compiled_code(model, tmp_path):
 def test_each_function_has_its_one_signature(model):
     _, compiled = model
     for name, dispatcher in compiled.dispatchers().items():
-        assert [str(sig) for sig in dispatcher.signatures] == [_canonical(SIGNATURES[name])]
+        assert [str(sig) for sig in dispatcher.signatures] == [_canonical(MODEL_FUNCTIONS[name])]
 
 
 def _canonical(signature: str) -> str:

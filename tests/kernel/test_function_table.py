@@ -4,11 +4,9 @@ each row's own function, and a table is refused for a function compiled for anot
 import numba
 import numpy as np
 import pytest
-from numba import types
+from mbds.kernel.function_table import address_table, function_at
 
-from mbds.kernel.function_table import V, address_table, function_at
-
-SIGNATURE = types.float64(V, types.float64)
+SIGNATURE = "float64(float64[::1], float64)"
 _SCALED_SUM = function_at(SIGNATURE)
 
 
@@ -35,6 +33,6 @@ def test_each_row_calls_its_function():
 
 
 def test_a_function_of_another_signature_is_refused():
-    other = numba.njit(types.float64(V, types.int64))(lambda x, c: x.sum())
+    other = numba.njit("float64(float64[::1], int64)")(lambda x, c: x.sum())
     with pytest.raises(TypeError, match="not compiled for"):
         address_table([_sum_times, other], [SIGNATURE, SIGNATURE])
