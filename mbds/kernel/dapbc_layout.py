@@ -6,6 +6,8 @@ from collections import namedtuple
 
 import numpy as np
 
+from mbds.kernel.layout import MATRIX, VECTOR
+
 #: The numbers of one DAP_BC model (SI units):
 #: par (n_par,) the element parameters of the generated functions; mass (3 nB,) the diagonal of
 #: M (m, m, J per body); functs (nFunct, FUNCT_COLUMNS) the driver functions; point_body (nP,)
@@ -48,7 +50,7 @@ DapbcFunctions = namedtuple(
     "constraints jacobian velocity_rhs acceleration_rhs forces_before forces_after user_force potential_energy nc",
 )
 
-_V, _M = "float64[::1]", "float64[:, ::1]"
+_V, _M = VECTOR, MATRIX
 #: The generated functions with their numba signatures, in the order of DapbcFunctions and of the
 #: rows of a DAP_BC model's function table; the user force's arguments are those of
 #: mbds.io.dapbc.user_force.SIGNATURE.

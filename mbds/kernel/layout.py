@@ -11,7 +11,7 @@ from collections import namedtuple
 
 import numpy as np
 
-VECTOR, MATRIX = "float64[::1]", "float64[:, ::1]"
+VECTOR, MATRIX = "float64[::1]", "float64[:, ::1]"  # C-contiguous, in numba signature strings
 MODEL_FUNCTIONS = {
     "mass_matrix": f"void({VECTOR}, float64, {VECTOR}, {MATRIX})",
     "h_vector": f"void({VECTOR}, {VECTOR}, float64, {VECTOR}, {VECTOR})",
