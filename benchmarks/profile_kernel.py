@@ -5,8 +5,8 @@ Run from the repository root (Linux ``perf`` must be installed)::
 
     .venv/bin/python benchmarks/profile_kernel.py campaigns/woodpecker --time 2 --runs 6
 
-A child process compiles the model with an empty cache (so that numba hands every function's
-LLVM module to its JIT, whose addresses this script can list), writes ``/tmp/perf-PID.map``
+A child process compiles the model and the kernel without any cache (so that numba hands every
+function's LLVM module to its JIT, whose addresses this script can list; about two minutes), writes ``/tmp/perf-PID.map``
 (function names by address, which ``perf`` reads) and a copy of each mbds function's machine code,
 then runs the model ``--runs`` times; ``perf record`` samples only those runs. The table gives each
 function's share of all samples and the share of samples on its ``push`` instructions: numba
@@ -138,7 +138,7 @@ def main() -> int:
             for cns in folder.glob("*.cns"):
                 cns.write_text("".join(f"c'omega = {args.omega!r}\n" if line.startswith("c'omega") else line
                                        for line in cns.read_text().splitlines(keepends=True)))
-        env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"))
+        env = dict(os.environ, MBDS_CACHE_DIR=str(temp / "cache"), MBDS_JIT_CACHE="0")
         process = subprocess.Popen([sys.executable, __file__, str(folder), "--time", str(args.time), "--runs",
                                     str(args.runs), "--child", str(temp)], env=env)
         while not (temp / "ready").exists():

@@ -17,8 +17,10 @@ penetration has its edges tested against the other body's vertices (T:T both way
 
 Broad phase: for each pair, the axis-aligned boxes of the two shapes are intersected (the edge
 body's box inflated by its skin and the margin); only vertices inside the overlap and edges
-crossing it are kept, and the edges are bucketed along the overlap's longer side, so the cost
-grows with the number of points near the contact, not with the product of the point counts.
+crossing it are kept, and where there are more than FEW_EDGES of them they are bucketed along
+the overlap's longer side, so the cost grows with the number of points near the contact, not
+with the product of the point counts. Each kept edge's unit tangent and length are computed
+once; a vertex's gap is tested before its position along the edge.
 """
 
 from __future__ import annotations
@@ -27,6 +29,9 @@ import numpy as np
 
 from mbds.kernel.jit import jit
 
+FEW_EDGES = 16
+"""Up to this many edges near a pair's overlap, every vertex tests each of them: sorting them
+into buckets would cost more."""
 DEEP = 0.01
 """A vertex deeper than DEEP x skin behind a face (with the default skin: deeper than
 maximumPenetration) is in contact with it only if it lies inside the face's body, and a vertex's
@@ -84,7 +89,7 @@ def bounding_boxes(world, point_start, out):
 @jit(refcount=False)
 def detect_contacts(
     world, point_start, boxes, pair_bodies, pair_resisting, skin, margin,
-    c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work,
+    c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work, frames,
 ):
     """Find vertex-edge contacts of all pairs; return their count, or -1 if the output
     arrays (capacity ``c_pair.shape[0]``) are too small.
@@ -95,7 +100,8 @@ def detect_contacts(
     per pair (m).
     Outputs per contact: pair, vertex body and (global) point index, edge body and the global
     index of the edge's first point, xi, gap (m), outward normal of the edge (2,), vertex
-    position (2,). work: int64 scratch of at least 3 * P + 2050 entries.
+    position (2,). work: int64 scratch of at least 3 * P + 2050 entries; frames: (P, 3) scratch
+    for the unit tangent and length of each edge near a pair's overlap (row: its first point).
     """
     count = 0
     capacity = c_pair.shape[0]
@@ -112,7 +118,7 @@ def detect_contacts(
             count = _pair_contacts(
                 p, vertex_body, edge_body, world, point_start, x0, y0, x1, y1, skin[edge_body], margin[p],
                 c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
-                work, count, capacity,
+                work, frames, count, capacity,
             )
             if count < 0:
                 return -1
@@ -131,7 +137,7 @@ def _overlap(boxes, vb, eb, reach):
 def _pair_contacts(
     p, vb, eb, world, point_start, x0, y0, x1, y1, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
-    work, count, capacity,
+    work, frames, count, capacity,
 ):
     """Contacts of the vertices of body vb in the box (x0, y0, x1, y1) against the edges of
     body eb (see :func:`detect_contacts`); return the new count, or -1 when full."""
@@ -154,14 +160,15 @@ def _pair_contacts(
         if ex1 + reach >= x0 and ex0 - reach <= x1 and ey1 + reach >= y0 and ey0 - reach <= y1:
             work[edges + ne] = j
             ne += 1
+            _edge_frame(world, j, frames)
     if ne == 0:
         return count
-    # bucket the edges along the longer side of the overlap box
+    # bucket the edges along the longer side of the overlap box (not a few: each vertex tests them all)
     axis = 0 if (x1 - x0) >= (y1 - y0) else 1
     lo = x0 if axis == 0 else y0
     span = (x1 - x0) if axis == 0 else (y1 - y0)
     nb = min(ne, 1024)
-    if span <= 0.0:
+    if span <= 0.0 or ne <= FEW_EDGES:
         nb = 1
     width = span / nb if nb > 1 else 1.0
     for k in range(nb + 1):
@@ -202,11 +209,14 @@ def _pair_contacts(
         k = _bucket(world[i, axis], lo, width, nb)
         for m in range(work[starts + k], work[starts + k + 1]):
             j = work[members + m]
-            xi, gap, nx, ny = vertex_edge(world, i, j)
-            if xi < 0.0 or xi > 1.0:
-                continue
+            tx, ty, length = frames[j, 0], frames[j, 1], frames[j, 2]
+            gap = _gap(world, i, j, tx, ty)
             if gap <= -skin or gap > margin:
                 continue
+            xi = _xi(world, i, j, tx, ty, length)
+            if xi < 0.0 or xi > 1.0:
+                continue
+            nx, ny = ty, -tx
             if gap < -DEEP * skin and not _inside(world, i, point_start[eb], point_start[eb + 1]):
                 continue  # within the skin of a face seen from inside, but outside the body
             if count >= capacity:
@@ -278,13 +288,34 @@ def _bucket(value, lo, width, nb):
 @jit(inline="always")
 def vertex_edge(world, i, j):
     """(xi, gap, n_x, n_y) of world point i against the edge from point j to point j + 1."""
-    qx, qy = world[j, 0], world[j, 1]
-    tx, ty = world[j + 1, 0] - qx, world[j + 1, 1] - qy
+    tx, ty, length = _frame(world, j)
+    return _xi(world, i, j, tx, ty, length), _gap(world, i, j, tx, ty), ty, -tx
+
+
+@jit(inline="always")
+def _xi(world, i, j, tx, ty, length):
+    """xi of world point i along the edge from point j with unit tangent (tx, ty) and length (m)."""
+    return (tx * (world[i, 0] - world[j, 0]) + ty * (world[i, 1] - world[j, 1])) / length
+
+
+@jit(inline="always")
+def _gap(world, i, j, tx, ty):
+    """The gap (m) of world point i from the edge from point j with unit tangent (tx, ty)."""
+    return ty * (world[i, 0] - world[j, 0]) - tx * (world[i, 1] - world[j, 1])
+
+
+@jit(inline="always")
+def _frame(world, j):
+    """(t_x, t_y, L): the unit tangent and the length (m) of the edge from point j to j + 1."""
+    tx, ty = world[j + 1, 0] - world[j, 0], world[j + 1, 1] - world[j, 1]
     length = np.sqrt(tx * tx + ty * ty)
-    tx /= length
-    ty /= length
-    dx, dy = world[i, 0] - qx, world[i, 1] - qy
-    return (tx * dx + ty * dy) / length, ty * dx - tx * dy, ty, -tx
+    return tx / length, ty / length, length
+
+
+@jit(inline="always")
+def _edge_frame(world, j, frames):
+    """frames[j] = :func:`_frame` of edge j."""
+    frames[j, 0], frames[j, 1], frames[j, 2] = _frame(world, j)
 
 
 @jit(refcount=False)

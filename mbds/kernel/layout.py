@@ -62,11 +62,11 @@ Bodies = namedtuple("Bodies", "world boxes pose vel B bhat beta trig dpos dvel d
 Jacobians B and their derivative terms, cosine and sine of each body's angle, dependent
 coordinates, detection margins (m) and speed bounds (see mbds.kernel.motion)."""
 
-Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work order")
+Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work frames order")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
-edge parameter xi, gap (m), unit normal out of the edge body, contact point (m); work:
-detection scratch; order: 0, 1, 2, ... (the index list of all contacts, for functions that
-take a list of contacts)."""
+edge parameter xi, gap (m), unit normal out of the edge body, contact point (m); work, frames:
+detection scratch (the second for edge tangents and lengths); order: 0, 1, 2, ... (the index
+list of all contacts, for functions that take a list of contacts)."""
 
 Rows = namedtuple("Rows", "WN WT what_n what_t wbar_n wbar_t gd_n gd_t laws law_out")
 """Contact rows: W_N, W_T, the velocity and acceleration terms, relative velocities (m/s) and
@@ -127,7 +127,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     i = np.int64
     contacts = Contacts(
         f(c, i), f(c, i), f(c, i), f(c, i), f(c, i), f(c), f(c), f((c, 2)), f((c, 2)), f(3 * points + 2050, i),
-        np.arange(c, dtype=i),
+        f((points, 3)), np.arange(c, dtype=i),
     )
     rows = Rows(f((c, n)), f((c, n)), f(c), f(c), f(c), f(c), f(c), f(c), f((c, 4)), f(4))
     dynamics = Dynamics(f((n, n)), f((n, n)), f((2, n), i), np.full((n, n), np.nan), f(n), f(n), f((c, n)),

@@ -147,7 +147,8 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, bodies.boxes, model.pair_bodies, model.pair_resisting,
                              model.skin, bodies.margin, contacts.pair, contacts.vb, contacts.vertex, contacts.eb,
-                             contacts.edge, contacts.xi, contacts.gap, contacts.normal, contacts.point, contacts.work)
+                             contacts.edge, contacts.xi, contacts.gap, contacts.normal, contacts.point, contacts.work,
+                             contacts.frames)
         if nc < 0:
             return CAPACITY
         # --- 3: accept the step that led here, or go back to its start with half the step

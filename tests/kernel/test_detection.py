@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, world_points
+from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, vertex_edge, world_points
 
 
 def circle(radius, n, rough=0.0, seed=0):
@@ -28,6 +28,7 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     count = detect_contacts(
         world, start, boxes, np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_),
         np.array(skin, dtype=float), np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work,
+        np.empty((len(points), 3)),
     )
     if count < 0:
         return None, world, start
@@ -88,6 +89,22 @@ def test_rough_disks_match_brute_force(seed):
     assert set(found) == set(expected)
     for key, (xi, gap) in expected.items():
         assert found[key][0] == pytest.approx(xi, abs=1e-12) and found[key][1] == pytest.approx(gap, abs=1e-15)
+
+
+@pytest.mark.parametrize("points", [24, 48, 400])
+def test_contacts_hold_the_geometry_that_contact_tracking_recomputes(points):
+    """A contact's xi, gap and normal as detection reports them (edges in buckets or, where only
+    a few are near, tested by every vertex) are those vertex_edge gives for its vertex and edge
+    bit for bit: a step's contact tracking (contact_geometry) starts from the same numbers."""
+    a = circle(0.05, points, rough=0.002, seed=points)
+    b = circle(0.04, points, rough=0.002, seed=points + 1)
+    pose = np.array([[0, 0, 0.1], [0.089, 0.003, -0.2]])  # 1 mm of overlap: contacts at every resolution
+    skin, margin = 2e-3, 1e-4
+    found, world, start = detect([a, b], pose, [(0, 1)], [(True, True)], [skin, skin], margin)
+    expected = brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin, margin)
+    assert expected and set(found) == set(expected)
+    for (vertex, edge), (xi, gap, normal) in found.items():
+        assert (xi, gap, *normal) == vertex_edge(world, vertex, edge)
 
 
 def test_resisting_flags_select_directions():
