@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, vertex_edge, world_points
 
@@ -105,6 +107,29 @@ def test_contacts_hold_the_geometry_that_contact_tracking_recomputes(points):
     assert expected and set(found) == set(expected)
     for (vertex, edge), (xi, gap, normal) in found.items():
         assert (xi, gap, *normal) == vertex_edge(world, vertex, edge)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    points=st.integers(3, 120),
+    rough=st.floats(0.0, 0.3),
+    seed=st.integers(0, 10_000),
+    distance=st.floats(0.05, 0.095),
+    angles=st.tuples(st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi)),
+    skin=st.floats(1e-5, 5e-3),
+    margin=st.floats(0.0, 1e-3),
+)
+def test_star_polygons_match_brute_force(points, rough, seed, distance, angles, skin, margin):
+    """Random star-shaped (often non-convex) polygons of 3 to 120 points, at random relative
+    poses, skins and margins: detection finds exactly the contacts of the brute-force search."""
+    a = circle(0.05, points, rough=rough, seed=seed)
+    b = circle(0.04, max(3, points // 2), rough=rough, seed=seed + 1)
+    pose = np.array([[0, 0, angles[0]], [distance * np.cos(angles[1]), distance * np.sin(angles[1]), angles[2]]])
+    found, world, start = detect([a, b], pose, [(0, 1)], [(True, True)], [skin, skin], margin)
+    expected = brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin, margin)
+    assert set(found) == set(expected)
+    for key, (xi, gap) in expected.items():
+        assert found[key][0] == pytest.approx(xi, abs=1e-12) and found[key][1] == pytest.approx(gap, abs=1e-15)
 
 
 def test_resisting_flags_select_directions():
