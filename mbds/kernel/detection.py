@@ -163,7 +163,7 @@ def _pair_contacts(
             _edge_frame(world, j, frames)
     if ne == 0:
         return count
-    # bucket the edges along the longer side of the overlap box (not a few: each vertex tests them all)
+    # bucket the edges along the longer side of the overlap box (up to FEW_EDGES stay in one bucket)
     axis = 0 if (x1 - x0) >= (y1 - y0) else 1
     lo = x0 if axis == 0 else y0
     span = (x1 - x0) if axis == 0 else (y1 - y0)
