@@ -61,11 +61,9 @@ def load_compiled(path: Path, key: str) -> CompiledModel:
     from mbds.kernel.stepper import advance  # (compiled or loaded from the kernel's cache on its first call)
 
     module = cache.load(path)
-    functions = {name: getattr(module, name) for name in GENERATED_FUNCTIONS}
     return CompiledModel(
-        **functions,
-        advance=functools.partial(advance, address_table([functions[name] for name in MODEL_FUNCTIONS],
-                                                         list(MODEL_FUNCTIONS.values()))),
+        **{name: getattr(module, name) for name in GENERATED_FUNCTIONS},
+        advance=functools.partial(advance, address_table(module, MODEL_FUNCTIONS)),
         n=module.N,
         m=module.M,
         n_contact_laws=module.CONTACT_LAWS,

@@ -147,7 +147,7 @@ def compile_dapbc(expressions: DapbcExpressions, cache_dir: Path | None = None) 
 @functools.cache
 def _bound(module: ModuleType) -> SimpleNamespace:
     """The kernel's DAP_BC analyses bound to the functions of ``module``."""
-    table = address_table([getattr(module, name) for name in DAPBC_FUNCTIONS], list(DAPBC_FUNCTIONS.values()))
+    table = address_table(module, DAPBC_FUNCTIONS)
     bound = SimpleNamespace(**{f.__name__: functools.partial(f, table, module.NC) for f in ANALYSES})
     bound.module = module  # (keeps the functions of the table alive)
     return bound

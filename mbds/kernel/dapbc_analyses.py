@@ -46,8 +46,7 @@ def _project(t, y, model):
     f, data = model
     n = y.shape[0] // 2
     q, qd = y[:n].copy(), y[n:].copy()
-    eq.correct_positions(f.constraints, f.jacobian, f.nc, q, t, data.par, data.functs, PROJECTION_TOLERANCE)
-    eq.correct_velocities(f.jacobian, f.velocity_rhs, f.nc, q, qd, t, data.par, data.functs)
+    _correct(f, q, qd, t, data.par, data.functs, PROJECTION_TOLERANCE)
     y[:n] = q
     y[n:] = qd
 
@@ -79,7 +78,13 @@ def post(table, nc, times, Y, states, data, out):
 @jit
 def correct(table, nc, q, qd, t, par, functs, tolerance):
     """DAP_BC's initial-condition correction in place; returns the Newton iterations (-1: failed)."""
-    f = _functions(table, nc)
+    return _correct(_functions(table, nc), q, qd, t, par, functs, tolerance)
+
+
+@jit(inline="always")
+def _correct(f, q, qd, t, par, functs, tolerance):
+    """Newton on the coordinates q to |Phi| <= tolerance, then the velocities qd, in place (f:
+    DapbcFunctions); returns the Newton iterations (-1: failed)."""
     iterations = eq.correct_positions(f.constraints, f.jacobian, f.nc, q, t, par, functs, tolerance)
     eq.correct_velocities(f.jacobian, f.velocity_rhs, f.nc, q, qd, t, par, functs)
     return iterations

@@ -55,11 +55,13 @@ def function_at(signature: str):
     return at
 
 
-def address_table(dispatchers, signatures) -> np.ndarray:
-    """The table (int64, (k, 2)) of numba dispatchers, each compiled for the matching signature
-    string of ``signatures``; raises TypeError for a dispatcher without it."""
-    table = np.zeros((len(dispatchers), 2), np.int64)
-    for row, (dispatcher, text) in enumerate(zip(dispatchers, signatures, strict=True)):
+def address_table(functions, signatures: dict[str, str]) -> np.ndarray:
+    """The table (int64, (k, 2)) of the numba dispatchers named by ``signatures`` (name:
+    signature string, in the table's order), attributes of ``functions`` (a module, say), each
+    compiled for its signature; raises TypeError for a dispatcher without it."""
+    table = np.zeros((len(signatures), 2), np.int64)
+    for row, (name, text) in enumerate(signatures.items()):
+        dispatcher = getattr(functions, name)
         signature = signature_of(text)
         if signature not in dispatcher.nopython_signatures:
             raise TypeError(f"{dispatcher.__name__} is not compiled for {signature}")
