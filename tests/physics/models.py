@@ -159,6 +159,16 @@ def energy_residual(result: RunResult) -> np.ndarray:
     return result.energy[0] - result.energy - result.lost + result.drive
 
 
+def add_fixed_body(folder: Path, name: str, shape: np.ndarray) -> None:
+    """Add a body that never moves (no coordinates), of ``shape`` (k, 2) in world coordinates
+    (m), to the model in ``folder``; its pairs are the model's ``.cop`` sections that name it."""
+    (folder / f"{name}.bdy").write_text(_body(name, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), {"mass": 1.0, "InertiaZZ": 1.0}))
+    (folder / f"{name}.exs").write_text(_shape(shape))
+    world = folder / "model.wld"
+    count = world.read_text().count(".bdy")
+    world.write_text(world.read_text().rstrip("\n") + f"\nbody{count + 1} = {name}.bdy\n")
+
+
 @dataclass
 class FreeBody:
     """A free rigid body (generalized x, y, Rz): name, shape (k, 2) in the body frame (m, origin
