@@ -71,10 +71,10 @@ def _detect_all(model, world, boxes, margin, contacts, repeat):
     for k in range(repeat * world.shape[0]):
         k %= world.shape[0]
         bounding_boxes(world[k], model.point_start, boxes[k])
-        found += detect_contacts(world[k], model.point_start, boxes[k], model.pair_bodies, model.pair_resisting,
-                                 model.skin, margin[k], contacts.pair, contacts.vb, contacts.vertex, contacts.eb,
-                                 contacts.edge, contacts.xi, contacts.gap, contacts.normal, contacts.point,
-                                 contacts.work, contacts.frames)
+        found += detect_contacts(world[k], model.point_start, model.point_reflex, model.concave, boxes[k],
+                                 model.pair_bodies, model.pair_resisting, model.skin, margin[k], contacts.pair,
+                                 contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi, contacts.gap,
+                                 contacts.normal, contacts.point, contacts.work, contacts.frames)
     return found // repeat
 
 

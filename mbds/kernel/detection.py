@@ -4,13 +4,16 @@ Shapes are closed counter-clockwise polygons in body frames (m); a body's world 
 (x, y, Rz) in (m, m, rad). For a vertex P of body V and an edge Q0 -> Q1 of body E, with
 tangent t = (Q1 - Q0) / L and outward normal n = (t_y, -t_x) of E:
 
-- position along the edge xi = t . (P - Q0) / L, a candidate when 0 <= xi <= 1;
+- position along the edge xi = t . (P - Q0) / L, a candidate when 0 <= xi <= 1 (or within the
+  edge's :func:`band` beyond a concave corner);
 - gap g = n . (P - Q0) (m), negative in penetration; a candidate when -skin_E < g <= margin.
 
 A vertex deeper than DEEP x skin behind an edge counts only if it lies inside the edge's body
-(a point-in-polygon test), and of a vertex's contacts with one body only those within DEEP x skin
-of its nearest face are kept: where the skin is thicker than a body, a vertex near one face is
-also within the skin of the opposite face, seen from inside, without touching it.
+(a point-in-polygon test), and of a vertex's contacts with one body behind their faces only those
+within DEEP x skin of the nearest of them are kept: where the skin is thicker than a body, a
+vertex near one face is also within the skin of the opposite face, seen from inside, without
+touching it. Contacts in front of their faces are all kept: in the notch at a concave corner a
+vertex is in front of both faces, and the nearer one is the one it approaches.
 
 Which vertex-edge directions are tested follows ``resistingPenetration``: a body that resists
 penetration has its edges tested against the other body's vertices (T:T both ways).
@@ -35,7 +38,7 @@ into buckets would cost more."""
 DEEP = 0.01
 """A vertex deeper than DEEP x skin behind a face (with the default skin: deeper than
 maximumPenetration) is in contact with it only if it lies inside the face's body, and a vertex's
-contacts with one body are those within DEEP x skin of its nearest face."""
+contacts with one body behind their faces are those within DEEP x skin of the nearest of them."""
 
 
 @jit(refcount=False)
@@ -88,20 +91,23 @@ def bounding_boxes(world, point_start, out):
 
 @jit(refcount=False)
 def detect_contacts(
-    world, point_start, boxes, pair_bodies, pair_resisting, skin, margin,
+    world, point_start, point_reflex, concave, boxes, pair_bodies, pair_resisting, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work, frames,
 ):
     """Find vertex-edge contacts of all pairs; return their count, or -1 if the output
     arrays (capacity ``c_pair.shape[0]``) are too small.
 
-    world: (P, 2) world points from :func:`world_points`; boxes: (nb, 4) from
+    world: (P, 2) world points from :func:`world_points`; point_reflex: (P,) whether the outline
+    turns clockwise at each point (mbds.model.arrays.concave_corners) and concave: (nb,) whether a
+    body has such a point; boxes: (nb, 4) from
     :func:`bounding_boxes`; pair_bodies: (np, 2); pair_resisting: (np, 2) booleans;
     skin: (nb,) deepest penetration checked (m); margin: (np,) largest positive gap reported
     per pair (m).
     Outputs per contact: pair, vertex body and (global) point index, edge body and the global
     index of the edge's first point, xi, gap (m), outward normal of the edge (2,), vertex
-    position (2,). work: int64 scratch of at least 3 * P + 2050 entries; frames: (P, 3) scratch
-    for the unit tangent and length of each edge near a pair's overlap (row: its first point).
+    position (2,). work: int64 scratch of at least 3 * P + 2050 entries; frames: (P, 5) scratch
+    for the unit tangent, length and band (:func:`band`) of each edge near a pair's overlap (row:
+    its first point).
     """
     count = 0
     capacity = c_pair.shape[0]
@@ -112,13 +118,14 @@ def detect_contacts(
             if not pair_resisting[p, side]:
                 continue
             reach = skin[edge_body] + margin[p]
-            x0, y0, x1, y1 = _overlap(boxes, vertex_body, edge_body, reach)
+            # (a vertex facing an edge beyond a concave corner lies within 2 reach of that corner)
+            x0, y0, x1, y1 = _overlap(boxes, vertex_body, edge_body, 2.0 * reach if concave[edge_body] else reach)
             if x0 > x1 or y0 > y1:  # no vertex can be near an edge
                 continue
             count = _pair_contacts(
-                p, vertex_body, edge_body, world, point_start, x0, y0, x1, y1, skin[edge_body], margin[p],
-                c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
-                work, frames, count, capacity,
+                p, vertex_body, edge_body, world, point_start, point_reflex, concave[edge_body], x0, y0, x1, y1,
+                skin[edge_body], margin[p], c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap,
+                c_normal, c_point, work, frames, count, capacity,
             )
             if count < 0:
                 return -1
@@ -135,12 +142,13 @@ def _overlap(boxes, vb, eb, reach):
 
 @jit(refcount=False)
 def _pair_contacts(
-    p, vb, eb, world, point_start, x0, y0, x1, y1, skin, margin,
+    p, vb, eb, world, point_start, point_reflex, concave, x0, y0, x1, y1, skin, margin,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
     work, frames, count, capacity,
 ):
     """Contacts of the vertices of body vb in the box (x0, y0, x1, y1) against the edges of
-    body eb (see :func:`detect_contacts`); return the new count, or -1 when full."""
+    body eb (see :func:`detect_contacts`; concave: whether eb has a concave corner); return the
+    new count, or -1 when full."""
     reach = skin + margin
     npts = world.shape[0]
     edges = npts  # work layout (no array views): vertices, edges, bucket starts, bucket members
@@ -157,10 +165,11 @@ def _pair_contacts(
     for j in range(point_start[eb], point_start[eb + 1] - 1):
         ex0, ex1 = min(world[j, 0], world[j + 1, 0]), max(world[j, 0], world[j + 1, 0])
         ey0, ey1 = min(world[j, 1], world[j + 1, 1]), max(world[j, 1], world[j + 1, 1])
-        if ex1 + reach >= x0 and ex0 - reach <= x1 and ey1 + reach >= y0 and ey0 - reach <= y1:
+        pad = _pad(point_reflex, j, reach) if concave else reach
+        if ex1 + pad >= x0 and ex0 - pad <= x1 and ey1 + pad >= y0 and ey0 - pad <= y1:
             work[edges + ne] = j
             ne += 1
-            _edge_frame(world, j, frames)
+            _edge_frame(world, point_reflex, j, reach, frames)
     if ne == 0:
         return count
     # bucket the edges along the longer side of the overlap box (up to FEW_EDGES stay in one bucket)
@@ -191,8 +200,9 @@ def _pair_contacts(
                 break
         for e in range(ne):
             j = work[edges + e]
-            a = min(world[j, axis], world[j + 1, axis]) - reach
-            b = max(world[j, axis], world[j + 1, axis]) + reach
+            pad = _pad(point_reflex, j, reach) if concave else reach
+            a = min(world[j, axis], world[j + 1, axis]) - pad
+            b = max(world[j, axis], world[j + 1, axis]) + pad
             for k in range(_bucket(a, lo, width, nb), _bucket(b, lo, width, nb) + 1):
                 if pass_ == 0:
                     work[starts + k] += 1
@@ -214,7 +224,7 @@ def _pair_contacts(
             if gap <= -skin or gap > margin:
                 continue
             xi = _xi(world, i, j, tx, ty, length)
-            if xi < 0.0 or xi > 1.0:
+            if (xi < 0.0 or xi > 1.0) and (xi < frames[j, 3] or xi > frames[j, 4]):  # (beyond a concave end)
                 continue
             nx, ny = ty, -tx
             if gap < -DEEP * skin and not _inside(world, i, point_start[eb], point_start[eb + 1]):
@@ -239,18 +249,21 @@ def _pair_contacts(
 
 @jit(inline="always")
 def _nearest_faces(first, count, tolerance, c_vertex, c_edge, c_xi, c_gap, c_normal, c_point):
-    """Of one vertex's contacts with one body (rows first ... count - 1), keep those whose gap is
-    within ``tolerance`` (m) of the nearest face's (the largest gap); return the new count. A
+    """Of one vertex's contacts with one body (rows first ... count - 1), keep every one in front
+    of its face (gap > 0) and, of those behind their faces, the ones whose gap is within
+    ``tolerance`` (m) of the nearest (the largest gap behind a face); return the new count. A
     vertex on one face of a body thinner than the skin also lies within the skin of the
-    opposite face, seen from inside: that face is not in contact."""
+    opposite face, seen from inside: that face is not in contact. A vertex in front of two faces
+    (in the notch at a concave corner) may touch either."""
     if count - first < 2:
         return count
-    best = c_gap[first]
-    for r in range(first + 1, count):
-        best = max(best, c_gap[r])
+    best = -np.inf
+    for r in range(first, count):
+        if c_gap[r] <= 0.0:
+            best = max(best, c_gap[r])
     kept = first
     for r in range(first, count):
-        if c_gap[r] >= best - tolerance:
+        if c_gap[r] > 0.0 or c_gap[r] >= best - tolerance:
             if kept != r:
                 c_vertex[kept] = c_vertex[r]
                 c_edge[kept] = c_edge[r]
@@ -313,9 +326,31 @@ def _frame(world, j):
 
 
 @jit(inline="always")
-def _edge_frame(world, j, frames):
-    """frames[j] = :func:`_frame` of edge j."""
+def _edge_frame(world, point_reflex, j, reach, frames):
+    """frames[j] = :func:`_frame` of edge j and its :func:`band`."""
     frames[j, 0], frames[j, 1], frames[j, 2] = _frame(world, j)
+    frames[j, 3], frames[j, 4] = band(point_reflex, j, reach, frames[j, 2])
+
+
+@jit(inline="always")
+def _pad(point_reflex, j, reach):
+    """How far (m) from the edge from point j to j + 1, along either axis, a vertex facing it
+    can be: ``reach``, or twice that where its :func:`band` reaches beyond a concave corner."""
+    return 2.0 * reach if point_reflex[j] or point_reflex[j + 1] else reach
+
+
+@jit(inline="always")
+def band(point_reflex, j, reach, length):
+    """(lo, hi): the range of xi over which a vertex faces the edge from point j to j + 1 of
+    ``length`` (m): [0, 1], reaching ``reach`` (m: the pair's skin plus its detection margin)
+    beyond an end at a concave corner. There the bands of the two edges that meet leave a
+    wedge that neither covers: a vertex sliding along one face a little behind it, or moving
+    towards the other face from before its start, would reach the other face unseen, within a
+    step that the step control (which trusts every vertex within reach of an edge to be
+    detected) does not shorten."""
+    lo = -reach / length if point_reflex[j] else 0.0
+    hi = 1.0 + reach / length if point_reflex[j + 1] else 1.0
+    return lo, hi
 
 
 @jit(refcount=False)
@@ -331,13 +366,16 @@ def contact_geometry(world, c_vertex, c_edge, index, count, c_xi, c_gap, c_norma
 
 
 @jit(refcount=False)
-def tracked_depth(world, contacts, count):
+def tracked_depth(world, point_reflex, skin, margin, contacts, count):
     """The deepest penetration (m) at the world points ``world`` of the first ``count`` known
-    contacts whose vertex still lies over its edge (0 <= xi <= 1); 0 if none penetrates. Unlike
-    detection, this sees a vertex however deep it went."""
+    contacts whose vertex still faces its edge (xi within the :func:`band` of their detection:
+    skin (nb,) and margin (np,) in m); 0 if none penetrates. Unlike detection, this sees a vertex
+    however deep it went."""
     depth = 0.0
     for k in range(count):
-        xi, gap, _, _ = vertex_edge(world, contacts.vertex[k], contacts.edge[k])
-        if 0.0 <= xi <= 1.0:
-            depth = max(depth, -gap)
+        i, j = contacts.vertex[k], contacts.edge[k]
+        tx, ty, length = _frame(world, j)
+        lo, hi = band(point_reflex, j, skin[contacts.eb[k]] + margin[contacts.pair[k]], length)
+        if lo <= _xi(world, i, j, tx, ty, length) <= hi:
+            depth = max(depth, -_gap(world, i, j, tx, ty))
     return depth

@@ -30,5 +30,6 @@ def contact_temperature(model, pair, vertex, edge, edge_end, xi, point_interval)
     initialTemperature when the pair has no heat model."""
     if not model.pair_heated[pair]:
         return model.pair_temperature[pair]
+    xi = min(max(xi, 0.0), 1.0)  # a vertex beyond an end of its edge (mbds.kernel.detection.band) meets that end
     edge_temperature = (1.0 - xi) * point_interval[edge, TEMP] + xi * point_interval[edge_end, TEMP]
     return 0.5 * (point_interval[vertex, TEMP] + edge_temperature)

@@ -52,8 +52,8 @@ R_XI, R_IMP_N, R_IMP_T, R_IMP_X, R_IMP_Y, R_LOSS, R_ANGLE, RECORD_COLUMNS = rang
 
 ModelArrays = namedtuple(
     "ModelArrays",
-    "binding binding_index start_pose carrier offset points point_start skin factor radius "
-    "pair_bodies pair_law pair_resisting pair_temperature pair_heated point_heat watch_start watch_points p",
+    "binding binding_index start_pose carrier offset points point_start point_reflex concave skin factor "
+    "radius pair_bodies pair_law pair_resisting pair_temperature pair_heated point_heat watch_start watch_points p",
 )
 """The model's kernel arrays (see mbds.model.arrays.KernelArrays); p: its parameters."""
 
@@ -65,8 +65,8 @@ coordinates, detection margins (m) and speed bounds (see mbds.kernel.motion)."""
 Contacts = namedtuple("Contacts", "pair vb vertex eb edge xi gap normal point work frames order")
 """Detected vertex-edge contacts: pair, vertex body and point, edge body and start point,
 edge parameter xi, gap (m), unit normal out of the edge body, contact point (m); work, frames:
-detection scratch (the second for edge tangents and lengths); order: 0, 1, 2, ... (the index
-list of all contacts, for functions that take a list of contacts)."""
+detection scratch (the second for edge tangents, lengths and the ends of their bands); order:
+0, 1, 2, ... (the index list of all contacts, for functions that take a list of contacts)."""
 
 Rows = namedtuple("Rows", "WN WT what_n what_t wbar_n wbar_t gd_n gd_t laws law_out")
 """Contact rows: W_N, W_T, the velocity and acceleration terms, relative velocities (m/s) and
@@ -127,7 +127,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     i = np.int64
     contacts = Contacts(
         f(c, i), f(c, i), f(c, i), f(c, i), f(c, i), f(c), f(c), f((c, 2)), f((c, 2)), f(3 * points + 2050, i),
-        f((points, 3)), np.arange(c, dtype=i),
+        f((points, 5)), np.arange(c, dtype=i),
     )
     rows = Rows(f((c, n)), f((c, n)), f(c), f(c), f(c), f(c), f(c), f(c), f((c, 4)), f(4))
     dynamics = Dynamics(f((n, n)), f((n, n)), f((2, n), i), np.full((n, n), np.nan), f(n), f(n), f((c, n)),

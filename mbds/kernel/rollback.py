@@ -44,8 +44,9 @@ def record(contacts, i, imp_n, imp_t, loss, model, point_loss, point_interval, b
     """Add contact i's impulses (N s) and lost work (J) of this step to its points, and keep
     the record so that going back can take it out again.
 
-    The vertex point gets all of it; the edge's two points share it as (1 - xi, xi), with the
-    impulse reversed (the reaction). Impulses are normal-tangential (n out of the edge body,
+    The vertex point gets all of it; the edge's two points share it as (1 - xi, xi) (xi clipped
+    to [0, 1]: a vertex beyond an end of its edge loads that end only), with the impulse
+    reversed (the reaction). Impulses are normal-tangential (n out of the edge body,
     t = (-n_y, n_x)) and x-y, as acting on the watched point's body. Points with a heat model
     (model.point_heat) warm by their share of the loss times their HEATING (deg C per J).
     """
@@ -53,7 +54,7 @@ def record(contacts, i, imp_n, imp_t, loss, model, point_loss, point_interval, b
     vertex = contacts.vertex[i]
     edge = contacts.edge[i]
     edge_end = edge_end_point(edge, contacts.eb[i], point_start)
-    xi = contacts.xi[i]
+    xi = min(max(contacts.xi[i], 0.0), 1.0)
     nx = contacts.normal[i, 0]
     ny = contacts.normal[i, 1]
     imp_x = imp_n * nx - imp_t * ny

@@ -23,7 +23,9 @@ class KernelArrays:
     with (-1 if none) and ``offset`` (nb, 3) its pose in the carrier frame; ``mass`` (kg),
     ``inertia`` (kg m^2), ``displacement_factor``, ``skin`` (m), ``radius`` (m, largest vertex
     distance from the body origin). Shapes: ``points`` (P, 2) body-frame points of all bodies
-    (closing point included) with ``point_start`` (nb + 1,) offsets.
+    (closing point included) with ``point_start`` (nb + 1,) offsets, and ``point_reflex`` (P,)
+    whether the outline turns clockwise at each point (a concave corner), ``concave`` (nb,)
+    whether a body's outline has any.
     Pairs (``np``): ``pair_bodies`` (np, 2), ``pair_law`` (np,), ``pair_resisting`` (np, 2)
     booleans, ``pair_temperature`` (np,) initial contact temperature (deg C), ``pair_heated``
     (np,) whether the pair has a temperature model, ``point_heat`` (P, HEAT_COLUMNS) each
@@ -47,6 +49,8 @@ class KernelArrays:
     radius: np.ndarray
     points: np.ndarray
     point_start: np.ndarray
+    point_reflex: np.ndarray
+    concave: np.ndarray
     pair_bodies: np.ndarray
     pair_law: np.ndarray
     pair_resisting: np.ndarray
@@ -72,6 +76,7 @@ def flatten(model: Model) -> KernelArrays:
     watches = model.watches
     start = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     watch_points = [[start[w.body] + p for p in w.points] for w in watches]
+    reflex = [concave_corners(b.points) for b in bodies]
     return KernelArrays(
         binding=np.array([b.binding for b in bodies], dtype=np.int64).reshape(-1, 3),
         binding_index=np.array([b.binding_index for b in bodies], dtype=np.int64).reshape(-1, 3),
@@ -86,6 +91,8 @@ def flatten(model: Model) -> KernelArrays:
         radius=np.array([np.hypot(b.points[:, 0], b.points[:, 1]).max() for b in bodies], dtype=float),
         points=np.ascontiguousarray(np.concatenate([b.points for b in bodies]) if bodies else np.zeros((0, 2))),
         point_start=start,
+        point_reflex=np.concatenate(reflex or [np.zeros(0, dtype=np.bool_)]),
+        concave=np.array([r.any() for r in reflex], dtype=np.bool_),
         pair_bodies=np.array([(p.first, p.second) for p in model.pairs], dtype=np.int64).reshape(-1, 2),
         pair_law=np.array([p.law for p in model.pairs], dtype=np.int64),
         pair_resisting=np.array([p.resisting for p in model.pairs], dtype=np.bool_).reshape(-1, 2),
@@ -101,6 +108,20 @@ def flatten(model: Model) -> KernelArrays:
         parameters=model.parameters.values.copy(),
     )
 
+
+
+def concave_corners(points: np.ndarray) -> np.ndarray:
+    """Whether a closed counter-clockwise outline (k, 2), its last point repeating the first,
+    turns clockwise at each of its points (k,): the concave corners, where the bands of the two
+    edges that meet leave a gap (mbds.kernel.detection)."""
+    if len(points) < 4:
+        return np.zeros(len(points), dtype=np.bool_)
+    corners = points[:-1]
+    before = corners - np.roll(corners, 1, axis=0)
+    after = np.roll(corners, -1, axis=0) - corners
+    turn = before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]
+    concave = turn < 0.0
+    return np.append(concave, concave[:1])
 
 
 def point_heat(model: Model, point_start: np.ndarray) -> np.ndarray:

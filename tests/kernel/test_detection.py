@@ -6,6 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, vertex_edge, world_points
+from mbds.model.arrays import concave_corners
 
 
 def circle(radius, n, rough=0.0, seed=0):
@@ -27,10 +28,11 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     xi, gap = np.empty(capacity), np.empty(capacity)
     normal, point = np.empty((capacity, 2)), np.empty((capacity, 2))
     work = np.empty(3 * len(points) + 2050, dtype=np.int64)
+    reflex = [concave_corners(s) for s in shapes]
     count = detect_contacts(
-        world, start, boxes, np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_),
-        np.array(skin, dtype=float), np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work,
-        np.empty((len(points), 3)),
+        world, start, np.concatenate(reflex), np.array([r.any() for r in reflex]), boxes, np.array(pairs, dtype=np.int64),
+        np.array(resisting, dtype=np.bool_), np.array(skin, dtype=float), np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work,
+        np.empty((len(points), 5)),
     )
     if count < 0:
         return None, world, start
@@ -46,10 +48,13 @@ def inside(point, polygon) -> bool:
 
 
 def brute_force(world, start, vb, eb, skin, margin):
-    """Every vertex of vb over an edge of eb with -skin < gap <= margin; one deeper than DEEP x
-    skin only when inside eb; of a vertex's contacts, those within DEEP x skin of the largest gap."""
+    """Every vertex of vb over an edge of eb (0 <= xi <= 1, reaching skin + margin beyond an end at
+    a concave corner) with -skin < gap <= margin; one deeper than DEEP x
+    skin only when inside eb; of a vertex's contacts, those in front of their faces and, behind
+    their faces, those within DEEP x skin of the largest gap behind a face."""
     found = {}
     polygon = world[start[eb]:start[eb + 1]]
+    concave = concave_corners(polygon)
     for i in range(start[vb], start[vb + 1] - 1):
         mine = {}
         for j in range(start[eb], start[eb + 1] - 1):
@@ -57,11 +62,14 @@ def brute_force(world, start, vb, eb, skin, margin):
             t = (q1 - q0) / np.linalg.norm(q1 - q0)
             xi = t @ (world[i] - q0) / np.linalg.norm(q1 - q0)
             gap = np.array([t[1], -t[0]]) @ (world[i] - q0)
-            if 0 <= xi <= 1 and -skin < gap <= margin and (gap >= -DEEP * skin or inside(world[i], polygon)):
+            length = np.linalg.norm(q1 - q0)
+            lo = -(skin + margin) / length if concave[j - start[eb]] else 0.0
+            hi = 1.0 + (skin + margin) / length if concave[j + 1 - start[eb]] else 1.0
+            if lo <= xi <= hi and -skin < gap <= margin and (gap >= -DEEP * skin or inside(world[i], polygon)):
                 mine[(i, j)] = (xi, gap)
-        if mine:
-            best = max(gap for _, gap in mine.values())
-            found |= {key: value for key, value in mine.items() if value[1] >= best - DEEP * skin}
+        behind = [gap for _, gap in mine.values() if gap <= 0]
+        best = max(behind, default=0.0)
+        found |= {key: value for key, value in mine.items() if value[1] > 0 or value[1] >= best - DEEP * skin}
     return found
 
 
@@ -77,6 +85,31 @@ def test_square_corner_on_floor():
     assert start[1] <= vertex < start[2] and edge == 2  # floor's top edge runs from point 2 to 3
     assert gap == pytest.approx(-1e-6, abs=1e-12)
     assert normal == pytest.approx([0, 1])
+
+
+@pytest.mark.parametrize("depth", [1e-4, 1e-6, 0.0, -1e-6, -5e-6])
+def test_a_vertex_in_a_notch_touches_both_walls(depth):
+    """A spike's tip in the notch of a concave corner, 2 mm in front of the notch's wall and
+    ``depth`` (m) in front of its floor (negative: behind it, in the body). The floor is a
+    contact whether the tip is in front of it or behind it, and so is the wall, whose band
+    reaches the skin plus the margin beyond the corner: a tip sliding along the floor a little
+    behind it meets the wall before it passes the corner. (A rule that kept only the contacts near the largest
+    gap dropped the floor while the tip was in front of both, and with bands that stopped at the
+    corner the wall never saw a tip behind the floor: either way a tip slid into the body.)"""
+    # an L-shaped block: the notch x < 0, y > 0 has the wall x = 0 (facing -x, from point 3 to 4)
+    # and the floor y = 0 (facing +y, from point 4 to 5); the spike points into the corner
+    block = np.array([(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (0.0, 0.1), (0.0, 0.0), (-0.1, 0.0), (-0.1, -0.1)])
+    spike = np.array([(0.0, 0.0), (-0.02, 0.03), (-0.03, 0.02), (0.0, 0.0)])  # tip at its origin
+    pose = np.array([[0.0, 0.0, 0.0], [-0.002, depth, 0.0]])
+    skin, margin = 1e-3, 3e-3
+    found, world, start = detect([block, spike], pose, [(0, 1)], [(True, True)], [skin, skin], margin)
+    tip = start[1]
+    tip_contacts = {edge: gap for (vertex, edge), (_, gap, _) in found.items() if vertex == tip}
+    floor_edge, wall_edge = 4, 3
+    assert tip_contacts[floor_edge] == pytest.approx(depth, abs=1e-15)
+    assert tip_contacts[wall_edge] == pytest.approx(0.002, abs=1e-15)
+    assert set(found) == set(brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin,
+                                                                                                   margin))
 
 
 @pytest.mark.parametrize("seed", range(5))
