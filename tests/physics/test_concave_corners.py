@@ -5,8 +5,8 @@ At a concave corner of a body the bands of its two edges (the vertices each edge
 0 <= xi <= 1) leave a wedge that neither covers, behind both faces. A vertex sliding along one
 face a little behind it (at rest, within maximumPenetration) enters that wedge at the corner,
 and a tip that enters the notch in front of both faces is nearer one of them. mbds's detection
-lets a band reach a skin beyond a concave corner and keeps every contact in front of its face
-(docs/theory.md §2). The depths here are measured from the sampled poses and the shapes, by a
+lets a band reach the skin plus the detection margin beyond a concave corner and keeps every
+contact in front of its face (docs/theory.md §2). The depths here are measured from the sampled poses and the shapes, by a
 point-in-polygon test and the distance to the outline, independently of the kernel.
 """
 
@@ -45,9 +45,9 @@ def world(shape: np.ndarray, pose: np.ndarray) -> np.ndarray:
 
 
 def into_the_notch(folder, shape, start, velocity, dt_max, max_penetration):
-    """A free ``shape`` (its points about the origin of the polygon's vertices) started at
-    ``start`` (x, y of its first point; m) with ``velocity`` (m/s, rad/s) over the L-shaped
-    block, frictionless, e = 0, for 0.1 s: (result, body-frame shape)."""
+    """A free polygon ``shape`` (k, 2; m) with its first point at ``start`` (m) and moving with
+    ``velocity`` (m/s, m/s, rad/s), over the L-shaped block, frictionless, e = 0, for 0.1 s:
+    (result, the shape about its centroid, as the body holds it)."""
     mass, inertia, centred = polygon_mass(shape)
     tip = centred[0]
     body = FreeBody("body", centred, mass, inertia, position=(start[0] - tip[0], start[1] - tip[1], 0.0),
