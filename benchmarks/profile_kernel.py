@@ -6,13 +6,13 @@ Run from the repository root (Linux ``perf`` must be installed)::
     .venv/bin/python benchmarks/profile_kernel.py campaigns/woodpecker --time 2 --runs 6
 
 A child process compiles the model and the kernel without any cache (so that numba hands every
-function's LLVM module to its JIT, whose addresses this script can list; about two minutes), writes ``/tmp/perf-PID.map``
-(function names by address, which ``perf`` reads) and a copy of each mbds function's machine code,
-then runs the model ``--runs`` times; ``perf record`` samples only those runs. The table gives each
-function's share of all samples and the share of samples on its ``push`` instructions: numba
-passes every array as 7 (1-D) or 9 (2-D) words on the stack, so a call with a bundle of 20
-arrays pushes about 150 words, whatever the callee does with them. ``--omega`` sets c'omega of
-a wearballs copy.
+function's LLVM module to its JIT, whose addresses this script can list; about two minutes),
+writes ``/tmp/perf-PID.map`` (function names by address, which ``perf`` reads) and a copy of each
+mbds function's machine code, then runs the model ``--runs`` times; ``perf record`` samples only
+those runs. The table gives each function's share of all samples and the share of samples on its
+``push`` instructions: numba passes every array as 7 (1-D) or 9 (2-D) words on the stack, so a
+call with a bundle of 20 arrays pushes about 150 words, whatever the callee does with them.
+``--omega`` sets c'omega of a wearballs copy.
 """
 
 from __future__ import annotations

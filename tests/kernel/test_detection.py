@@ -30,9 +30,9 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     work = np.empty(3 * len(points) + 2050, dtype=np.int64)
     reflex = [concave_corners(s) for s in shapes]
     count = detect_contacts(
-        world, start, np.concatenate(reflex), np.array([r.any() for r in reflex]), boxes, np.array(pairs, dtype=np.int64),
-        np.array(resisting, dtype=np.bool_), np.array(skin, dtype=float), np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work,
-        np.empty((len(points), 5)),
+        world, start, np.concatenate(reflex), np.array([r.any() for r in reflex]), boxes,
+        np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_), np.array(skin, dtype=float),
+        np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work, np.empty((len(points), 5)),
     )
     if count < 0:
         return None, world, start

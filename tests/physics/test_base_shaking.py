@@ -39,7 +39,8 @@ def shaken(folder, amplitude: float, friction: float, dt_max: float, max_penetra
     return result, result.q[:, 0] - a * np.sin(w * result.time)
 
 
-SETTINGS = [(1e-4, 1e-7), (1e-3, 1e-5)]  # (maximumTimestep s, maximumPenetration m): fine, and coarse with the default skin
+SETTINGS = [(1e-4, 1e-7), (1e-3, 1e-5)]
+"""(maximumTimestep s, maximumPenetration m): fine, and coarse with the default skin."""
 
 
 @pytest.mark.parametrize("dt_max, max_penetration", SETTINGS)

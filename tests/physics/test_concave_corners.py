@@ -6,8 +6,9 @@ At a concave corner of a body the bands of its two edges (the vertices each edge
 face a little behind it (at rest, within maximumPenetration) enters that wedge at the corner,
 and a tip that enters the notch in front of both faces is nearer one of them. mbds's detection
 lets a band reach the skin plus the detection margin beyond a concave corner and keeps every
-contact in front of its face (docs/theory.md §2). The depths here are measured from the sampled poses and the shapes, by a
-point-in-polygon test and the distance to the outline, independently of the kernel.
+contact in front of its face (docs/theory.md §2). The depths here are measured from the sampled
+poses and the shapes, by a point-in-polygon test and the distance to the outline, independently
+of the kernel.
 """
 
 import numpy as np

@@ -4,9 +4,9 @@ thirds of its initial height.
 The classic sliding-ladder problem of rigid-body mechanics texts, solved here in closed form
 from the energy and the two constraints. A uniform rod of length L and centroidal inertia
 m L²/12 leans at θ0 against the wall. While both ends touch, its centre moves on a circle of
-radius L/2 about the corner, and energy gives θ'² = (3 g / L)(sin θ0 - sin θ). The wall pushes while the centre's horizontal acceleration is
-positive, which ends at sin θ = (2/3) sin θ0; from then on the horizontal speed of the centre is
-constant, (1/3) sqrt(g L) sin^(3/2) θ0.
+radius L/2 about the corner, and energy gives θ'² = (3 g / L)(sin θ0 - sin θ). The wall pushes
+while the centre's horizontal acceleration is positive, which ends at sin θ = (2/3) sin θ0; from
+then on the horizontal speed of the centre is constant, (1/3) sqrt(g L) sin^(3/2) θ0.
 
 The rod is a thin hexagon whose two ends are single vertices on its axis, so the contacts are
 the ends of the ideal ladder.
