@@ -34,7 +34,8 @@ from mbds.simulation.buffers import RunSettings, model_tuple  # noqa: E402
 
 
 def kept_states(folder: Path, break_time: float, count: int):
-    """(model arrays, world points, boxes, margins, contact workspace) at ``count`` times of a run."""
+    """(model arrays, maximumPenetration (m), world points, boxes, margins, contact workspace) at
+    ``count`` times of a run."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = load_model(folder)
@@ -60,11 +61,12 @@ def kept_states(folder: Path, break_time: float, count: int):
     finally:
         run_module.workspace = workspace
     world, boxes, margin = (np.array(column) for column in zip(*states))
-    return model_tuple(run_module.flatten(model)), world, boxes, margin, made[-1].contacts
+    return (model_tuple(run_module.flatten(model)), model.settings.maximum_penetration, world, boxes, margin,
+            made[-1].contacts)
 
 
 @jit
-def _detect_all(model, world, boxes, margin, contacts, repeat):
+def _detect_all(model, max_pen, world, boxes, margin, contacts, repeat):
     """Detection at every kept state, ``repeat`` times over; returns the number of contacts found
     in one pass."""
     found = 0
@@ -72,9 +74,9 @@ def _detect_all(model, world, boxes, margin, contacts, repeat):
         k %= world.shape[0]
         bounding_boxes(world[k], model.point_start, boxes[k])
         found += detect_contacts(world[k], model.point_start, model.point_reflex, model.concave, boxes[k],
-                                 model.pair_bodies, model.pair_resisting, model.skin, margin[k], contacts.pair,
-                                 contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi, contacts.gap,
-                                 contacts.normal, contacts.point, contacts.work, contacts.frames)
+                                 model.pair_bodies, model.pair_resisting, model.skin, margin[k], max_pen,
+                                 contacts.pair, contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi,
+                                 contacts.gap, contacts.normal, contacts.point, contacts.work, contacts.frames)
     return found // repeat
 
 
@@ -93,12 +95,12 @@ def main() -> int:
             for cns in folder.glob("*.cns"):
                 cns.write_text("".join(f"c'omega = {args.omega!r}\n" if line.startswith("c'omega") else line
                                        for line in cns.read_text().splitlines(keepends=True)))
-        model, world, boxes, margin, contacts = kept_states(folder, args.time, args.states)
-    found = _detect_all(model, world, boxes, margin, contacts, 1)
+        model, max_pen, world, boxes, margin, contacts = kept_states(folder, args.time, args.states)
+    found = _detect_all(model, max_pen, world, boxes, margin, contacts, 1)
     best = np.inf
     for _ in range(5):
         start = time.perf_counter()
-        _detect_all(model, world, boxes, margin, contacts, args.repeat)
+        _detect_all(model, max_pen, world, boxes, margin, contacts, args.repeat)
         best = min(best, time.perf_counter() - start)
     calls = args.repeat * len(world)
     print(f"| model | states | contacts per state | µs per detection |\n|---|---|---|---|\n"

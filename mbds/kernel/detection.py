@@ -8,6 +8,14 @@ tangent t = (Q1 - Q0) / L and outward normal n = (t_y, -t_x) of E:
   edge's :func:`band` beyond a concave corner);
 - gap g = n . (P - Q0) (m), negative in penetration; a candidate when -skin_E < g <= margin.
 
+Past the end Q1 of an edge where the outline turns convexly (a convex corner C = Q1, the next
+edge running from C), a vertex in the corner's exterior wedge (beyond the ends of both edges)
+faces neither edge. Within the margin of C it is a corner contact: gap |P - C| (at least
+CORNER_GAP x maxPen), normal (P - C) / |P - C| (the bisector of the two edges' normals when P is
+closer than that), xi of the edge that ends at C (> 1). Corner contacts are always open: they
+take part in no impact and no contact LCP, and serve the step control, which trusts every
+vertex within the margin of the other body to be reported (mbds.kernel.motion.reach_limit).
+
 A vertex deeper than DEEP x skin behind an edge counts only if it lies inside the edge's body
 (a point-in-polygon test), and of a vertex's contacts with one body behind their faces only those
 within DEEP x skin of the nearest of them are kept: where the skin is thicker than a body, a
@@ -35,6 +43,11 @@ from mbds.kernel.jit import jit
 FEW_EDGES = 16
 """Up to this many edges near a pair's overlap, every vertex tests each of them: sorting them
 into buckets would cost more."""
+CORNER_GAP = 0.3
+"""The smallest gap of a corner contact (x maxPen): above the gap up to which a contact at rest is
+held (mbds.kernel.contact_problem.HELD_FRACTION), so that a corner contact is never closed. The
+step control lets an approaching open contact go at most half maxPen past its gap, so a vertex
+this near a corner ends a step at most 0.8 maxPen inside the corner's body."""
 DEEP = 0.01
 """A vertex deeper than DEEP x skin behind a face (with the default skin: deeper than
 maximumPenetration) is in contact with it only if it lies inside the face's body, and a vertex's
@@ -91,18 +104,19 @@ def bounding_boxes(world, point_start, out):
 
 @jit(refcount=False)
 def detect_contacts(
-    world, point_start, point_reflex, concave, boxes, pair_bodies, pair_resisting, skin, margin,
+    world, point_start, point_reflex, concave, boxes, pair_bodies, pair_resisting, skin, margin, max_pen,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point, work, frames,
 ):
-    """Find vertex-edge contacts of all pairs; return their count, or -1 if the output
-    arrays (capacity ``c_pair.shape[0]``) are too small.
+    """Find vertex-edge and vertex-corner contacts of all pairs; return their count, or -1 if the
+    output arrays (capacity ``c_pair.shape[0]``) are too small.
 
     world: (P, 2) world points from :func:`world_points`; point_reflex: (P,) whether the outline
     turns clockwise at each point (mbds.model.arrays.concave_corners) and concave: (nb,) whether a
     body has such a point; boxes: (nb, 4) from
     :func:`bounding_boxes`; pair_bodies: (np, 2); pair_resisting: (np, 2) booleans;
     skin: (nb,) deepest penetration checked (m); margin: (np,) largest positive gap reported
-    per pair (m).
+    per pair (m); max_pen: maximumPenetration (m), which sets the smallest gap of a corner
+    contact (CORNER_GAP).
     Outputs per contact: pair, vertex body and (global) point index, edge body and the global
     index of the edge's first point, xi, gap (m), outward normal of the edge (2,), vertex
     position (2,). work: int64 scratch of at least 3 * P + 2050 entries; frames: (P, 5) scratch
@@ -124,8 +138,8 @@ def detect_contacts(
                 continue
             count = _pair_contacts(
                 p, vertex_body, edge_body, world, point_start, point_reflex, concave[edge_body], x0, y0, x1, y1,
-                skin[edge_body], margin[p], c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap,
-                c_normal, c_point, work, frames, count, capacity,
+                skin[edge_body], margin[p], CORNER_GAP * max_pen, c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge,
+                c_xi, c_gap, c_normal, c_point, work, frames, count, capacity,
             )
             if count < 0:
                 return -1
@@ -142,13 +156,13 @@ def _overlap(boxes, vb, eb, reach):
 
 @jit(refcount=False)
 def _pair_contacts(
-    p, vb, eb, world, point_start, point_reflex, concave, x0, y0, x1, y1, skin, margin,
+    p, vb, eb, world, point_start, point_reflex, concave, x0, y0, x1, y1, skin, margin, corner_gap,
     c_pair, c_vertex_body, c_vertex, c_edge_body, c_edge, c_xi, c_gap, c_normal, c_point,
     work, frames, count, capacity,
 ):
     """Contacts of the vertices of body vb in the box (x0, y0, x1, y1) against the edges of
-    body eb (see :func:`detect_contacts`; concave: whether eb has a concave corner); return the
-    new count, or -1 when full."""
+    body eb (see :func:`detect_contacts`; concave: whether eb has a concave corner; corner_gap:
+    the smallest gap of a corner contact, m); return the new count, or -1 when full."""
     reach = skin + margin
     npts = world.shape[0]
     edges = npts  # work layout (no array views): vertices, edges, bucket starts, bucket members
@@ -221,12 +235,17 @@ def _pair_contacts(
             j = work[members + m]
             tx, ty, length = frames[j, 0], frames[j, 1], frames[j, 2]
             gap = _gap(world, i, j, tx, ty)
-            if gap <= -skin or gap > margin:
+            if gap <= -reach or gap > margin:  # (in a corner's exterior wedge, within the margin of both lines)
                 continue
             xi = _xi(world, i, j, tx, ty, length)
-            if (xi < 0.0 or xi > 1.0) and (xi < frames[j, 3] or xi > frames[j, 4]):  # (beyond a concave end)
-                continue
-            nx, ny = ty, -tx
+            if xi > 1.0 and not point_reflex[j + 1]:  # past a convex end: a corner contact or none
+                nx, ny, gap = _corner(world, i, j, tx, ty, point_start[eb], point_start[eb + 1], margin, corner_gap)
+                if gap > margin:
+                    continue
+            else:
+                if gap <= -skin or xi < frames[j, 3] or xi > frames[j, 4]:  # (within a band beyond a concave end)
+                    continue
+                nx, ny = ty, -tx
             if gap < -DEEP * skin and not _inside(world, i, point_start[eb], point_start[eb + 1]):
                 continue  # within the skin of a face seen from inside, but outside the body
             if count >= capacity:
@@ -245,6 +264,31 @@ def _pair_contacts(
             count += 1
         count = _nearest_faces(first, count, DEEP * skin, c_vertex, c_edge, c_xi, c_gap, c_normal, c_point)
     return count
+
+
+@jit(inline="always")
+def _corner(world, i, j, tx, ty, start, stop, margin, corner_gap):
+    """(n_x, n_y, gap) of world point i against the convex corner C = point j + 1 at the end of the
+    edge from point j (unit tangent (tx, ty)), for a point past that end: the gap is |P - C| (at
+    least ``corner_gap``, m) where P lies in the corner's exterior wedge within ``margin`` (m) of C,
+    else inf. start, stop: the edge body's points (the last one repeats the first)."""
+    c = j + 1
+    following = start + 1 if c == stop - 1 else c + 1  # the far end of the edge that starts at C
+    dx, dy = world[i, 0] - world[c, 0], world[i, 1] - world[c, 1]
+    ux, uy = world[following, 0] - world[c, 0], world[following, 1] - world[c, 1]
+    d2 = dx * dx + dy * dy
+    if dx * ux + dy * uy >= 0.0 or d2 > margin * margin:  # facing the next edge, or too far
+        return 0.0, 0.0, np.inf
+    distance = np.sqrt(d2)
+    if distance > corner_gap:
+        return dx / distance, dy / distance, distance
+    # nearer than the smallest gap: the bisector of the two outward normals (or, where the
+    # outline turns back on itself, the direction beyond the end)
+    bx, by = ty + uy / np.sqrt(ux * ux + uy * uy), -tx - ux / np.sqrt(ux * ux + uy * uy)
+    size = np.sqrt(bx * bx + by * by)
+    if size < 1e-9:
+        return tx, ty, corner_gap
+    return bx / size, by / size, corner_gap
 
 
 @jit(inline="always")
@@ -366,16 +410,37 @@ def contact_geometry(world, c_vertex, c_edge, index, count, c_xi, c_gap, c_norma
 
 
 @jit(refcount=False)
-def tracked_depth(world, point_reflex, skin, margin, contacts, count):
+def tracked_depth(world, point_start, point_reflex, skin, margin, contacts, count):
     """The deepest penetration (m) at the world points ``world`` of the first ``count`` known
-    contacts whose vertex still faces its edge (xi within the :func:`band` of their detection:
-    skin (nb,) and margin (np,) in m); 0 if none penetrates. Unlike detection, this sees a vertex
-    however deep it went."""
+    contacts; 0 if none penetrates. Unlike detection, this sees a vertex however deep it went.
+
+    A vertex is as deep as it is behind its edge while it faces it (xi within the :func:`band` of
+    their detection: skin (nb,) and margin (np,) in m). Near an end of its edge where the outline
+    turns convexly, it may also face the other edge that meets there: then it is as deep as
+    it is behind the nearer of the two (it entered through the other one), and past that end,
+    as deep as it is behind the other edge where it lies inside the body (it passed the corner).
+    Each of these is at least its distance from the outline, so no penetration is underrated."""
     depth = 0.0
     for k in range(count):
-        i, j = contacts.vertex[k], contacts.edge[k]
+        i, j, eb = contacts.vertex[k], contacts.edge[k], contacts.eb[k]
         tx, ty, length = _frame(world, j)
-        lo, hi = band(point_reflex, j, skin[contacts.eb[k]] + margin[contacts.pair[k]], length)
-        if lo <= _xi(world, i, j, tx, ty, length) <= hi:
-            depth = max(depth, -_gap(world, i, j, tx, ty))
+        gap = _gap(world, i, j, tx, ty)
+        if -gap <= depth:  # no deeper than found so far (past a convex end, the other edge is nearer)
+            continue
+        xi = _xi(world, i, j, tx, ty, length)
+        lo, hi = band(point_reflex, j, skin[eb] + margin[contacts.pair[k]], length)
+        facing = lo <= xi <= hi
+        deeper = -gap if facing else 0.0
+        end = j + 1 if xi > 0.5 else j
+        if not point_reflex[end]:
+            start, stop = point_start[eb], point_start[eb + 1]
+            other = (j + 1 if j + 1 < stop - 1 else start) if end == j + 1 else (j - 1 if j > start else stop - 2)
+            ox, oy, other_length = _frame(world, other)
+            if 0.0 <= _xi(world, i, other, ox, oy, other_length) <= 1.0 and tx * ox + ty * oy > -1.0 + 1e-12:
+                behind = -_gap(world, i, other, ox, oy)  # (not where the outline turns back: a shape of two points)
+                if facing:
+                    deeper = min(deeper, behind)
+                elif behind > depth and _inside(world, i, start, stop):
+                    deeper = behind
+        depth = max(depth, deeper)
     return depth

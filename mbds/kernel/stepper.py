@@ -139,7 +139,8 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
         world_points(bodies.pose, bodies.trig, model.points, model.point_start, bodies.world)
         # (before detection replaces them: the margins are still those of their detection)
-        tracked = tracked_depth(bodies.world, model.point_reflex, model.skin, bodies.margin, contacts, back.tracked[0])
+        tracked = tracked_depth(bodies.world, model.point_start, model.point_reflex, model.skin, bodies.margin,
+                                contacts, back.tracked[0])
         if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
@@ -147,9 +148,9 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         bounding_boxes(bodies.world, model.point_start, bodies.boxes)
         detection_margins(model, bodies.motion, settings, bodies.margin)
         nc = detect_contacts(bodies.world, model.point_start, model.point_reflex, model.concave, bodies.boxes,
-                             model.pair_bodies, model.pair_resisting, model.skin, bodies.margin, contacts.pair,
-                             contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi, contacts.gap,
-                             contacts.normal, contacts.point, contacts.work, contacts.frames)
+                             model.pair_bodies, model.pair_resisting, model.skin, bodies.margin, settings[MAX_PEN],
+                             contacts.pair, contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi,
+                             contacts.gap, contacts.normal, contacts.point, contacts.work, contacts.frames)
         if nc < 0:
             return CAPACITY
         # --- 3: accept the step that led here, or go back to its start with half the step

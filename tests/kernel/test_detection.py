@@ -5,8 +5,16 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from mbds.kernel.detection import DEEP, bounding_boxes, detect_contacts, vertex_edge, world_points
+from mbds.kernel.contact_problem import HELD_FRACTION
+from mbds.kernel.detection import (
+    CORNER_GAP, DEEP, bounding_boxes, detect_contacts, tracked_depth, vertex_edge, world_points,
+)
+from mbds.kernel.layout import Contacts
 from mbds.model.arrays import concave_corners
+
+
+MAX_PEN = 1e-6
+"""maximumPenetration (m) of the detections here: corner contacts are at least CORNER_GAP x this."""
 
 
 def circle(radius, n, rough=0.0, seed=0):
@@ -17,7 +25,7 @@ def circle(radius, n, rough=0.0, seed=0):
     return np.vstack([pts, pts[:1]])
 
 
-def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
+def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000, max_pen=MAX_PEN):
     points = np.vstack(shapes)
     start = np.concatenate([[0], np.cumsum([len(s) for s in shapes])]).astype(np.int64)
     world = np.empty_like(points)
@@ -32,7 +40,7 @@ def detect(shapes, pose, pairs, resisting, skin, margin, capacity=10000):
     count = detect_contacts(
         world, start, np.concatenate(reflex), np.array([r.any() for r in reflex]), boxes,
         np.array(pairs, dtype=np.int64), np.array(resisting, dtype=np.bool_), np.array(skin, dtype=float),
-        np.full(len(pairs), margin), *out_i, xi, gap, normal, point, work, np.empty((len(points), 5)),
+        np.full(len(pairs), margin), max_pen, *out_i, xi, gap, normal, point, work, np.empty((len(points), 5)),
     )
     if count < 0:
         return None, world, start
@@ -47,11 +55,14 @@ def inside(point, polygon) -> bool:
     return bool(Path(polygon).contains_point(point, radius=0.0))
 
 
-def brute_force(world, start, vb, eb, skin, margin):
+def brute_force(world, start, vb, eb, skin, margin, max_pen=MAX_PEN):
     """Every vertex of vb over an edge of eb (0 <= xi <= 1, reaching skin + margin beyond an end at
     a concave corner) with -skin < gap <= margin; one deeper than DEEP x
     skin only when inside eb; of a vertex's contacts, those in front of their faces and, behind
-    their faces, those within DEEP x skin of the largest gap behind a face."""
+    their faces, those within DEEP x skin of the largest gap behind a face. A vertex past the
+    end of an edge at a convex corner, beyond the start of the next edge and within the margin
+    of the corner, is a corner contact at its distance from the corner (at least CORNER_GAP x
+    max_pen)."""
     found = {}
     polygon = world[start[eb]:start[eb + 1]]
     concave = concave_corners(polygon)
@@ -65,7 +76,12 @@ def brute_force(world, start, vb, eb, skin, margin):
             length = np.linalg.norm(q1 - q0)
             lo = -(skin + margin) / length if concave[j - start[eb]] else 0.0
             hi = 1.0 + (skin + margin) / length if concave[j + 1 - start[eb]] else 1.0
-            if lo <= xi <= hi and -skin < gap <= margin and (gap >= -DEEP * skin or inside(world[i], polygon)):
+            if xi > 1.0 and not concave[j + 1 - start[eb]]:
+                following = world[j + 2] if j + 2 < start[eb + 1] else world[start[eb] + 1]
+                distance = np.linalg.norm(world[i] - q1)
+                if (world[i] - q1) @ (following - q1) < 0 and distance <= margin:
+                    mine[(i, j)] = (xi, max(distance, CORNER_GAP * max_pen))
+            elif lo <= xi <= hi and -skin < gap <= margin and (gap >= -DEEP * skin or inside(world[i], polygon)):
                 mine[(i, j)] = (xi, gap)
         behind = [gap for _, gap in mine.values() if gap <= 0]
         best = max(behind, default=0.0)
@@ -112,6 +128,77 @@ def test_a_vertex_in_a_notch_touches_both_walls(depth):
                                                                                                    margin))
 
 
+BLOCK = np.array([(-0.2, -0.2), (0.0, -0.2), (0.0, 0.0), (-0.2, 0.0), (-0.2, -0.2)])
+"""A block whose top right corner, where its right side (from point 1 to 2) meets its top (from
+point 2 to 3), is at the origin (m)."""
+DIAMOND = np.array([(0.0, 0.0), (0.03, 0.03), (0.0, 0.06), (-0.03, 0.03), (0.0, 0.0)])
+"""A square turned by 45 degrees, its lowest corner at its origin (m)."""
+
+
+@pytest.mark.parametrize("where, gap, normal", [
+    ((3e-4, 4e-4), 5e-4, (0.6, 0.8)),  # in the corner's exterior wedge, within the margin
+    ((1e-7, 1e-7), CORNER_GAP * MAX_PEN, (np.sqrt(0.5), np.sqrt(0.5))),  # nearer than the smallest gap
+    ((8e-4, 8e-4), None, None),  # beyond the margin
+])
+def test_a_tip_in_the_exterior_wedge_of_a_convex_corner_is_a_corner_contact(where, gap, normal):
+    """A diamond's tip above and right of a block's corner faces neither the block's top nor its
+    side, so no vertex-edge contact sees it. Within the margin it is a corner contact with the
+    edge that ends at the corner (the side), at its distance from the corner (the tip of a
+    diamond thrown at the corner passed through it unseen: nothing limited its step), never
+    nearer than CORNER_GAP x maxPen, which is above the gap at which a resting contact is held:
+    a corner contact is open. The block's corner, in the diamond's own exterior wedge at the
+    tip, is one for the diamond's lower right edge."""
+    pose = np.array([[0.0, 0.0, 0.0], [where[0], where[1], 0.0]])
+    skin, margin = 1e-4, 1e-3
+    found, world, start = detect([BLOCK, DIAMOND], pose, [(0, 1)], [(True, True)], [skin, skin], margin)
+    assert set(found) == set(brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin,
+                                                                                                   margin))
+    tip = start[1]
+    if gap is None:
+        assert found == {}
+        return
+    xi, reported, direction = found[(tip, 1)]
+    assert xi > 1.0 and reported == pytest.approx(gap, rel=1e-12)
+    assert direction == pytest.approx(normal, abs=1e-12)
+    assert set(found) == {(tip, 1), (2, start[1] + 3)}  # the block's corner against the diamond's lower right edge
+    assert CORNER_GAP > HELD_FRACTION
+
+
+def test_a_tip_facing_the_top_beside_the_corner_touches_the_top():
+    """Left of the corner's exterior wedge the tip faces the block's top: a vertex-edge contact."""
+    pose = np.array([[0.0, 0.0, 0.0], [-2e-4, 1e-4, 0.0]])
+    found, world, start = detect([BLOCK, DIAMOND], pose, [(0, 1)], [(True, False)], [1e-4, 1e-4], 1e-3)
+    assert found[(start[1], 2)][1] == pytest.approx(1e-4, abs=1e-15) and len(found) == 1
+
+
+@pytest.mark.parametrize("where, depth", [
+    ((-3e-4, -1e-4), 1e-4),  # through the top: as deep as below it
+    ((-1e-4, -3e-4), 1e-4),  # through the side: as deep as left of it
+    ((2e-4, -1e-4), 0.0),  # below the corner, right of the side: outside
+])
+def test_tracked_depth_follows_a_tip_past_the_end_of_its_edge(where, depth):
+    """A corner contact's tip (on the block's side, past its end) moves through the corner into
+    the block: its depth is its distance from the nearer of the side and the top. Outside the
+    block it is not counted."""
+    pose = np.array([[0.0, 0.0, 0.0], [3e-4, 4e-4, 0.0]])
+    skin, margin = 1e-4, 1e-3
+    found, world, start = detect([BLOCK, DIAMOND], pose, [(0, 1)], [(True, False)], [skin, skin], margin)
+    assert list(found) == [(start[1], 1)]
+    count = 1
+    contacts = Contacts(pair=np.zeros(count, np.int64), vb=np.ones(count, np.int64),
+                        vertex=np.array([start[1]]), eb=np.zeros(count, np.int64), edge=np.array([1]),
+                        xi=np.zeros(count), gap=np.zeros(count), normal=np.zeros((count, 2)),
+                        point=np.zeros((count, 2)), work=np.zeros(1, np.int64), frames=np.zeros((1, 5)),
+                        order=np.zeros(count, np.int64))
+    moved = np.array([[0.0, 0.0, 0.0], [where[0], where[1], 0.0]])
+    points = np.vstack([BLOCK, DIAMOND])
+    world = np.empty_like(points)
+    world_points(moved, np.column_stack([np.cos(moved[:, 2]), np.sin(moved[:, 2])]), points, start, world)
+    reflex = np.concatenate([concave_corners(BLOCK), concave_corners(DIAMOND)])
+    assert tracked_depth(world, start, reflex, np.full(2, skin), np.full(1, margin), contacts,
+                         count) == pytest.approx(depth, abs=1e-15)
+
+
 @pytest.mark.parametrize("seed", range(5))
 def test_rough_disks_match_brute_force(seed):
     a = circle(0.05, 400, rough=0.01, seed=seed)
@@ -128,7 +215,7 @@ def test_rough_disks_match_brute_force(seed):
 
 @pytest.mark.parametrize("points", [24, 48, 400])
 def test_contacts_hold_the_geometry_that_contact_tracking_recomputes(points):
-    """A contact's xi, gap and normal as detection reports them (edges in buckets or, where only
+    """A vertex-edge contact's xi, gap and normal as detection reports them (edges in buckets or, where only
     a few are near, tested by every vertex) are those vertex_edge gives for its vertex and edge
     bit for bit: a step's contact tracking (contact_geometry) starts from the same numbers."""
     a = circle(0.05, points, rough=0.002, seed=points)
@@ -139,7 +226,8 @@ def test_contacts_hold_the_geometry_that_contact_tracking_recomputes(points):
     expected = brute_force(world, start, 1, 0, skin, margin) | brute_force(world, start, 0, 1, skin, margin)
     assert expected and set(found) == set(expected)
     for (vertex, edge), (xi, gap, normal) in found.items():
-        assert (xi, gap, *normal) == vertex_edge(world, vertex, edge)
+        if xi <= 1.0:  # (a corner contact is never closed, so never tracked)
+            assert (xi, gap, *normal) == vertex_edge(world, vertex, edge)
 
 
 @settings(max_examples=60, deadline=None)

@@ -57,6 +57,13 @@ def lowest_vertex(shape: np.ndarray, q: np.ndarray) -> np.ndarray:
     return (q[:, 1:2] + s * shape[:, 0] + c * shape[:, 1]).min(axis=1)
 
 
+dt_maxima = st.floats(-5.0, -3.0).map(lambda e: 10.0**e)
+"""maximumTimestep (s), 1e-5 … 1e-3, evenly in its logarithm."""
+penetrations = st.floats(-9.0, -5.0).map(lambda e: 10.0**e)
+"""maximumPenetration (m), 1e-9 … 1e-5, evenly in its logarithm (skins at their default)."""
+contact_laws = {"friction": st.floats(0.0, 1.0), "restitution": st.floats(0.0, 0.8)}
+"""Friction coefficient and normal restitution of the contact."""
+
 shapes = st.one_of(
     st.builds(lambda long, aspect: rectangle(long / aspect, long),
               st.floats(0.05, 0.4), st.floats(1.0, 10.0)),
@@ -70,10 +77,9 @@ shapes = st.one_of(
     tilt=st.floats(0.0, np.pi),
     drop=st.floats(0.0, 0.05),
     spin=st.floats(-10.0, 10.0),
-    dt_max=st.floats(-5.0, -3.0).map(lambda e: 10.0**e),
-    max_penetration=st.floats(-9.0, -5.0).map(lambda e: 10.0**e),
-    friction=st.floats(0.0, 1.0),
-    restitution=st.floats(0.0, 0.8),
+    dt_max=dt_maxima,
+    max_penetration=penetrations,
+    **contact_laws,
 )
 def test_no_vertex_goes_deeper_than_the_allowed_penetration_nor_gains_energy(
     tmp_path_factory, shape, tilt, drop, spin, dt_max, max_penetration, friction, restitution,
