@@ -96,13 +96,14 @@ ROLLBACK_SLOTS = 3
 LAST_SLOT = ROLLBACK_SLOTS - 1
 
 Rollback = namedtuple(
-    "Rollback", "q u clock temperature records_int records_float record_count last_sample cap tracked",
+    "Rollback", "q u clock temperature records_int records_float record_count last_sample cap tracked pending",
 )
 """The starts of the last ROLLBACK_SLOTS steps (slot LAST_SLOT: the last, 0: the oldest:
 coordinates, clock and point temperatures) and their contact records, for going back (a record
 count of -1: the slot cannot be gone back to); the time of the last history sample (s); the
 longest next step (s) after a step was rejected; how many contacts of the last step are checked
-at its end."""
+at its end; the depth (m) they were found at by a pass that ran out of contact capacity, for
+its rerun in a larger workspace (NaN: none)."""
 
 Workspace = namedtuple("Workspace", "bodies contacts rows dynamics problem forces rollback")
 """All scratch arrays of the stepper."""
@@ -141,7 +142,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     s = ROLLBACK_SLOTS
     rollback = Rollback(
         f((s, n)), f((s, n)), f((s, CLOCK)), f((s, points)), f((s, 2 * c, 3), i), f((s, 2 * c, RECORD_COLUMNS)),
-        np.full(s, -1, dtype=i), np.full(1, -np.inf), np.full(1, np.inf), f(1, i),
+        np.full(s, -1, dtype=i), np.full(1, -np.inf), np.full(1, np.inf), f(1, i), np.full(1, np.nan),
     )
     return Workspace(bodies, contacts, rows, dynamics, problem, forces, rollback)
 

@@ -139,8 +139,12 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
         world_points(bodies.pose, bodies.trig, model.points, model.point_start, bodies.world)
         # (before detection replaces them: the margins are still those of their detection)
-        tracked = tracked_depth(bodies.world, model.point_start, model.point_reflex, model.skin, bodies.margin,
-                                contacts, back.tracked[0])
+        if np.isnan(back.pending[0]):
+            tracked = tracked_depth(bodies.world, model.point_start, model.point_reflex, model.skin, bodies.margin,
+                                    contacts, back.tracked[0])
+        else:  # the rerun of a pass that ran out of contact capacity, whose detection replaced them
+            tracked = back.pending[0]
+            back.pending[0] = np.nan
         if not free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn):
             log_event(events, t, EVENT_SINGULAR_MASS, 0.0, 0.0)
             return NOT_FINITE
@@ -151,7 +155,8 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
                              model.pair_bodies, model.pair_resisting, model.skin, bodies.margin, settings[MAX_PEN],
                              contacts.pair, contacts.vb, contacts.vertex, contacts.eb, contacts.edge, contacts.xi,
                              contacts.gap, contacts.normal, contacts.point, contacts.work, contacts.frames)
-        if nc < 0:
+        if nc < 0:  # the caller moves everything into a larger workspace and calls again
+            back.pending[0] = tracked
             return CAPACITY
         # --- 3: accept the step that led here, or go back to its start with half the step
         penetration = tracked

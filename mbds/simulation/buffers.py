@@ -63,6 +63,18 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int) -
     return K.workspace(n, m, nb, points, pairs, capacity, fwork, iwork)
 
 
+def grown(ws: K.Workspace, bigger: K.Workspace) -> K.Workspace:
+    """``bigger``, a workspace for more contacts, holding what ``ws`` holds: each array copied
+    into the leading part of its larger twin. The run then goes on as if it had had the room
+    from its start: the steps it may go back to, the tracked contacts and the remembered contact
+    states stay."""
+    for old_bundle, new_bundle in zip(ws, bigger):
+        for old, new in zip(old_bundle, new_bundle):
+            part = tuple(slice(0, min(a, b)) for a, b in zip(old.shape, new.shape))
+            new[part] = old[part]
+    return bigger
+
+
 def event_buffer(length: int) -> K.Events:
     """Room for ``length`` kernel events."""
     return K.Events(np.zeros((length, 4)), np.zeros(1, dtype=np.int64))

@@ -14,6 +14,7 @@ from mbds.model.load import Model
 from mbds.simulation.buffers import (
     RunSettings,
     event_buffer,
+    grown,
     model_tuple,
     settings_array,
     workspace,
@@ -21,6 +22,9 @@ from mbds.simulation.buffers import (
 
 HISTORY_CHUNK = 4096
 EVENT_CHUNK = 1024
+CONTACT_CAPACITY = 16
+"""Simultaneous contacts a run's workspace holds at its start; it doubles whenever detection finds
+more."""
 
 
 class RunStopped(Exception):
@@ -59,7 +63,7 @@ def continue_from(state: RunState) -> None:
 
 def simulate(
     model: Model, run: RunSettings, state: RunState | None = None, progress=None, *, on_events=None,
-    on_samples: Callable[[Samples], None] | None = None, chunk: int = HISTORY_CHUNK,
+    on_samples: Callable[[Samples], None] | None = None, chunk: int = HISTORY_CHUNK, capacity: int = CONTACT_CAPACITY,
 ) -> RunResult:
     """Run ``model`` from ``state`` (default: its start) to ``run.break_time``.
 
@@ -72,7 +76,8 @@ def simulate(
     samples and events so far are returned, with ``stopped`` set. Without ``on_samples`` the
     result holds the samples, written by the stepper into one buffer sized for the run (a new
     one, twice as long, when samples at collisions or at every step fill it). The result does
-    not depend on ``chunk`` or ``run.passes_per_call``. A state that
+    not depend on ``chunk``, ``run.passes_per_call`` or the contact ``capacity`` it starts with
+    (the workspace grows, keeping what it holds). A state that
     stops being finite (or a mass matrix that is not positive definite) also ends the run, with
     ``stopped`` saying so.
     """
@@ -82,7 +87,6 @@ def simulate(
     mt = model_tuple(arrays)
     settings = settings_array(model, run)
     n, m, nb = len(arrays.q0), len(model.dependent), len(model.bodies)
-    capacity = 16
     ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
     chunks: list[Samples] = []
     collect = on_samples is None  # the result holds the samples: fill one buffer, no copies
@@ -98,7 +102,7 @@ def simulate(
         )
         if status == K.CAPACITY:
             capacity *= 2
-            ws = workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity)
+            ws = grown(ws, workspace(n, m, nb, len(arrays.points), len(arrays.pair_law), capacity))
             continue
         if not collect:
             if history.count[0]:
