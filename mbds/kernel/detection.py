@@ -273,7 +273,7 @@ def _corner(world, i, j, tx, ty, start, stop, margin, corner_gap):
     least ``corner_gap``, m) where P lies in the corner's exterior wedge within ``margin`` (m) of C,
     else inf. start, stop: the edge body's points (the last one repeats the first)."""
     c = j + 1
-    following = start + 1 if c == stop - 1 else c + 1  # the far end of the edge that starts at C
+    following = _next_edge(j, start, stop) + 1  # the far end of the edge that starts at C
     dx, dy = world[i, 0] - world[c, 0], world[i, 1] - world[c, 1]
     ux, uy = world[following, 0] - world[c, 0], world[following, 1] - world[c, 1]
     d2 = dx * dx + dy * dy
@@ -284,11 +284,25 @@ def _corner(world, i, j, tx, ty, start, stop, margin, corner_gap):
         return dx / distance, dy / distance, distance
     # nearer than the smallest gap: the bisector of the two outward normals (or, where the
     # outline turns back on itself, the direction beyond the end)
-    bx, by = ty + uy / np.sqrt(ux * ux + uy * uy), -tx - ux / np.sqrt(ux * ux + uy * uy)
+    u = np.sqrt(ux * ux + uy * uy)
+    bx, by = ty + uy / u, -tx - ux / u
     size = np.sqrt(bx * bx + by * by)
     if size < 1e-9:
         return tx, ty, corner_gap
     return bx / size, by / size, corner_gap
+
+
+@jit(inline="always")
+def _next_edge(j, start, stop):
+    """The edge (its first point) after the edge from point j of a body whose points are
+    start ... stop - 1, the last repeating the first."""
+    return j + 1 if j + 1 < stop - 1 else start
+
+
+@jit(inline="always")
+def _previous_edge(j, start, stop):
+    """The edge (its first point) before the edge from point j (see :func:`_next_edge`)."""
+    return j - 1 if j > start else stop - 2
 
 
 @jit(inline="always")
@@ -434,7 +448,7 @@ def tracked_depth(world, point_start, point_reflex, skin, margin, contacts, coun
         end = j + 1 if xi > 0.5 else j
         if not point_reflex[end]:
             start, stop = point_start[eb], point_start[eb + 1]
-            other = (j + 1 if j + 1 < stop - 1 else start) if end == j + 1 else (j - 1 if j > start else stop - 2)
+            other = _next_edge(j, start, stop) if end == j + 1 else _previous_edge(j, start, stop)
             ox, oy, other_length = _frame(world, other)
             if 0.0 <= _xi(world, i, other, ox, oy, other_length) <= 1.0 and tx * ox + ty * oy > -1.0 + 1e-12:
                 behind = -_gap(world, i, other, ox, oy)  # (not where the outline turns back: a shape of two points)

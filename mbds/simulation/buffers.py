@@ -16,9 +16,8 @@ def model_tuple(a: KernelArrays) -> K.ModelArrays:
     """The ``model`` argument of the stepper."""
     return K.ModelArrays(
         a.binding, a.binding_index, a.start_pose, a.carrier, a.offset, a.points, a.point_start, a.point_reflex,
-        a.concave, a.skin,
-        a.displacement_factor, a.radius, a.pair_bodies, a.pair_law, a.pair_resisting, a.pair_temperature,
-        a.pair_heated, a.point_heat, a.watch_start, a.watch_points, a.parameters,
+        a.concave, a.skin, a.displacement_factor, a.radius, a.pair_bodies, a.pair_law, a.pair_resisting,
+        a.pair_temperature, a.pair_heated, a.point_heat, a.watch_start, a.watch_points, a.parameters,
     )
 
 
