@@ -64,6 +64,14 @@ most 0.1 maxPen (see :func:`accelerations`), so it does not open and fall back o
 STATE_ROUNDS = 4
 """Rounds of state changes tried from the remembered contact states before Lemke's method
 takes over (see :func:`solve` and mbds.kernel.active_set)."""
+TRUSTED_SPREAD = 0.01
+"""A contact-force solution is trusted while its accelerations do not come from terms that
+cancel to below this fraction of the LCP's data, at the relative precision tol_lex of the
+solution check (:func:`_trusted`). Forces far out of proportion with the data lie along a
+near-null direction of the Delassus matrix: two stick candidates of one body pair whose friction
+cones overlap (corners resting on each other) can carry any internal force between them, and
+with a lever of round-off size it spins the bodies up. Such an LCP is solved once more with the
+stick compliance (:func:`_compliant_lemke`), which bounds that internal force."""
 COMPRESSION, EXPANSION, FORCES, SOLVING = range(4)
 """Families of LCPs whose contact states (mbds.kernel.active_set) are remembered apart: the
 compression and the expansion phases of impacts and the contact forces; SOLVING is the memory
@@ -351,16 +359,39 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
                               int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
     elif na == 1:
         solved = solve_one_contact(A, q, z, w, nh, tol_lex, pb.iwork, pb.fwork)
+    status = SOLVED
+    pivots = 0
     if not solved:
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
-        if status != SOLVED and nh > 0:
-            status, more = _compliant_lemke(A, q, z, w, na, nh, pb.hrow, settings, tol_lex, pb.fwork, pb.iwork)
-            pivots += more
-        if status != SOLVED:
-            log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
-            return False
+    if nh > 0 and (status != SOLVED or family == FORCES and not _trusted(A, q, z, na + nh, tol_lex)):
+        status, more = _compliant_lemke(A, q, z, w, na, nh, pb.hrow, settings, tol_lex, pb.fwork, pb.iwork)
+        pivots += more
+    if status != SOLVED:
+        status, more = _normal_compliant_lemke(A, q, z, w, na, settings, tol_lex, pb.fwork, pb.iwork)
+        pivots += more
+    if status != SOLVED:
+        log_event(events, t, EVENT_LCP_RAY + status - 1, float(m), float(pivots))
+        return False
     remember_states(active, na, nh, pb.hrow, contacts.vertex, contacts.edge, z, w, pb.memory[SOLVING][kept:])
+    return True
+
+
+@jit(inline="always")
+def _trusted(A, q, z, rows, tol_lex):
+    """Whether the accelerations of a contact-force solution z of LCP(A, q) are determined to
+    within TRUSTED_SPREAD of the data: in each of the acceleration rows i < ``rows`` (the normal
+    and stick rows), tol_lex times the size of the terms that cancel, sum_j |A_ij z_j| (m/s^2),
+    stays below TRUSTED_SPREAD max|q_i| over those rows."""
+    data = 0.0
+    for i in range(rows):
+        data = max(data, abs(q[i]))
+    for i in range(rows):
+        terms = 0.0
+        for j in range(q.shape[0]):
+            terms += abs(A[i, j] * z[j])
+        if tol_lex * terms > TRUSTED_SPREAD * data:
+            return False
     return True
 
 
@@ -385,6 +416,24 @@ def _compliant_lemke(A, q, z, w, na, nh, hrow, settings, tol_lex, fwork, iwork):
         mu = 0.5 * A[na + nh + g, hrow[g]]  # the cone row holds 2 mu lambda_N - lambda_0R >= 0
         A[r, r] += compliance
         A[r, hrow[g]] -= compliance * mu
+    return lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), fwork,
+                 iwork)
+
+
+@jit(refcount=False)
+def _normal_compliant_lemke(A, q, z, w, na, settings, tol_lex, fwork, iwork):
+    """Lemke's method on the LCP (A, q) with STICK_COMPLIANCE times its largest normal diagonal
+    entry added to the normal rows' diagonal: a contact then yields by that compliance per unit
+    of its normal force (m/s^2 per N, or m/s per N s at impacts). The normal block is positive
+    semidefinite; with the compliance it is definite, so that Lemke's method solves it where its
+    rows are dependent to round-off (a vertex in the seam of two fixed bodies touching both,
+    with opposite normals). A keeps the compliance; returns (status, pivots)."""
+    compliance = 0.0
+    for r in range(na):
+        compliance = max(compliance, abs(A[r, r]))
+    compliance *= STICK_COMPLIANCE
+    for r in range(na):
+        A[r, r] += compliance
     return lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), fwork,
                  iwork)
 

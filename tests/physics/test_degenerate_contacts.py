@@ -1,0 +1,49 @@
+"""Piles of polygons whose contacts make the contact LCPs degenerate (docs/theory.md §3).
+
+- Corners resting on corners (seed 125 of the pile in tests/physics/test_concave_corners.py:
+  friction 0.9, maximumTimestep 1e-4 s, maximumPenetration 1e-6 m). Two polygons come to rest at
+  t = 0.356 s with the corner of each on both edges at the corner of the other: two stick
+  candidates 1e-8 m apart whose normals are 45 degrees apart. Their friction cones overlap, so
+  the contact-force LCP has solutions with any internal force between the two contacts. At the
+  end point of a Heun step the solution check accepted 7e10 and 9.6e10 N (25 and 28 N at the
+  step's start). Over the lever of 1e-8 m this spun the polygons to 100-200 rad/s within one
+  step, and the energy grew from 14.4 J by 138 J with no LCP failure counted.
+- A vertex in the seam where a wall stands on the floor (seed 107: maximumTimestep 3e-4 s,
+  maximumPenetration 1e-8 m) touches the floor's top face and the wall's bottom face with
+  opposite normals (tests/kernel/test_normal_compliance.py). There the impact's LCP ended on a
+  ray at every step size, and the vertex went 0.47 mm (47,000 maximumPenetration) into the floor.
+
+Sources: the work-energy balance (the piles have no drive; their contacts, restitution below 1
+and Coulomb friction, only take energy, so the mechanical energy plus the work lost at the
+contacts stays at the initial energy), and the step control's bound (docs/theory.md §6: no
+vertex deeper than maximumPenetration unless an over-penetration is counted).
+"""
+
+import numpy as np
+
+from mbds.kernel import layout as K
+from tests.physics.models import energy_residual
+from tests.physics.test_concave_corners import FLOOR, WALLS, depth_inside, pile, world
+
+
+def test_polygons_resting_corner_on_corner_gain_no_energy(tmp_path):
+    result, _ = pile(tmp_path / "pile", 125)
+    assert result.state.clock[K.T] >= 1.5 - 1e-9
+    gain = -energy_residual(result)
+    assert gain.max() <= 1e-6 * result.energy[0], f"energy gained: {gain.max():.3g} J of {result.energy[0]:.3g} J"
+    assert np.abs(result.energy).max() <= result.energy[0] * (1.0 + 1e-6)
+    assert result.state.clock[K.OVER_PENETRATIONS] == 0
+
+
+def test_a_vertex_in_the_seam_of_wall_and_floor_stays_out_of_both(tmp_path):
+    result, shapes = pile(tmp_path / "pile", 107)
+    max_penetration = 1e-8
+    assert result.state.clock[K.T] >= 1.5 - 1e-9
+    assert result.state.clock[K.LCP_FAILURES] == 0
+    assert result.state.clock[K.OVER_PENETRATIONS] == 0
+    for pose in result.q:
+        for k, shape in enumerate(shapes):
+            outline = world(shape, pose[3 * k : 3 * k + 3])
+            for fixed in [FLOOR, *WALLS]:
+                assert depth_inside(outline, fixed).max() <= max_penetration * (1.0 + 1e-9)
+    assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
