@@ -67,7 +67,7 @@ takes over (see :func:`solve` and mbds.kernel.active_set)."""
 TRUSTED_SPREAD = 0.01
 """A contact-force solution is trusted while its accelerations do not come from terms that
 cancel to below this fraction of the LCP's data, at the relative precision tol_lex of the
-solution check (:func:`_trusted`). Forces far out of proportion with the data lie along a
+solution check (:func:`trusted`). Forces far out of proportion with the data lie along a
 near-null direction of the Delassus matrix: two stick candidates of one body pair whose friction
 cones overlap (corners resting on each other) can carry any internal force between them, and
 with a lever of round-off size it spins the bodies up. Such an LCP is solved once more with the
@@ -346,7 +346,9 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     with stick rows (any family) fails the solution check, the LCP is solved once more with a
     compliance on the stick rows (:func:`_compliant_lemke`): two stick candidates whose
     tangential rows coincide (a polygon resting flat on the floor) make the stick block singular
-    to round-off."""
+    to round-off. So is a contact-force solution that is not trusted (:func:`trusted`). Where
+    the end point still fails, the normal rows get a compliance too
+    (:func:`_normal_compliant_lemke`)."""
     if m == 0:
         return True
     A = pb.A_flat[at : at + m * m].reshape((m, m))
@@ -364,7 +366,7 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     if not solved:
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
-    if nh > 0 and (status != SOLVED or family == FORCES and not _trusted(A, q, z, na + nh, tol_lex)):
+    if nh > 0 and (status != SOLVED or family == FORCES and not trusted(A, q, z, na + nh, tol_lex)):
         status, more = _compliant_lemke(A, q, z, w, na, nh, pb.hrow, settings, tol_lex, pb.fwork, pb.iwork)
         pivots += more
     if status != SOLVED:
@@ -378,7 +380,7 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
 
 
 @jit(inline="always")
-def _trusted(A, q, z, rows, tol_lex):
+def trusted(A, q, z, rows, tol_lex):
     """Whether the accelerations of a contact-force solution z of LCP(A, q) are determined to
     within TRUSTED_SPREAD of the data: in each of the acceleration rows i < ``rows`` (the normal
     and stick rows), tol_lex times the size of the terms that cancel, sum_j |A_ij z_j| (m/s^2),

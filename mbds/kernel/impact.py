@@ -16,11 +16,20 @@ from mbds.kernel.contact_problem import (
     row_dot,
     solve,
     tangential_forces,
+    trusted,
 )
 from mbds.kernel.jit import jit
-from mbds.kernel.layout import DRIVE_WORK, LOST
+from mbds.kernel.layout import DRIVE_WORK, LOST, MAX_PIVOTS, PIVOT_MAX, PIVOT_MIN
+from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.linalg import span_dot
 from mbds.kernel.rollback import record
+
+LEFT_APPROACH = 1e-3
+"""A contact that still approaches after the compression LCP faster than LEFT_APPROACH times the
+rest velocity (it would go 1e-5 maxPen deeper within a maximum step) is stopped by the normal
+rows alone (:func:`_stop_approach`). The compression LCP holds its rows to tol_lex of its largest
+data, the sliding speeds among them: a contact at rest beside one sliding at 1 m/s kept
+approaching at 3e-8 m/s, and beyond maximumPenetration that held the step at minimumTimestep."""
 
 
 @jit(refcount=False)
@@ -71,6 +80,12 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     keep_states(pb, COMPRESSION, na)
     _apply_impulses(active, na, imp_n, imp_t, YN, YT, u)
     _relative_velocities(active, na, rows, u)
+    stopped = compression_loss  # (the impulses of _stop_approach, until the compression losses replace them)
+    for a in range(na):
+        stopped[active[a]] = 0.0
+    for g in range(ng):
+        _stop_approach(active[group[g] : group[g + 1]], pb, rows, dyn, stopped, lam_ne, lam_te, u, settings,
+                       tol_lex, pb.span[group[g] :], pb.A_flat[at:])
     # expansion: start from eN Lambda_NC (with its -mu tangential partner) and eT Lambda_TC;
     # the LCP adds the increments that keep contacts from closing, within Coulomb's cone
     for a in range(na):
@@ -125,8 +140,9 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     keep_states(pb, EXPANSION, kept)
     lost = 0.0
     drive = 0.0
-    for a in range(na):  # loss of the compression phase; then gam_* <- gamma_C
+    for a in range(na):  # loss of the compression phase; then gam_* <- gamma_C, imp_n the whole compression's
         c = active[a]
+        imp_n[c] += stopped[c]
         compression_loss[c] = -0.5 * (imp_n[c] * (gam_n[c] + gd_n[c]) + imp_t[c] * (gam_t[c] + gd_t[c]))
         gam_n[c] = gd_n[c]
         gam_t[c] = gd_t[c]
@@ -142,6 +158,41 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive
     return expanded
+
+
+@jit(refcount=False)
+def _stop_approach(part, pb, rows, dyn, stopped, dn, dt, u, settings, tol_lex, span, A_flat):
+    """Stop what the compression of the group ``part`` left approaching: where a contact still
+    approaches faster than LEFT_APPROACH times the rest velocity, the normal rows alone (their
+    LCP has the approach velocities as its only data, so Lemke's solution check holds them to
+    round-off of those) give normal impulses (N s, into ``stopped``), and u and the relative
+    velocities follow. They are not restituted: the expansion starts from the compression LCP's
+    impulses, so what corrects its round-off cannot feed energy back. dn, dt: scratch; span: the
+    group's rows of pb.span; A_flat: room for the k x k matrix."""
+    k = part.shape[0]
+    left = False
+    for a in range(k):
+        left = left or rows.gd_n[part[a]] < -LEFT_APPROACH * rest_velocity(settings)
+    if not left:
+        return
+    for a in range(k):
+        pb.stick[part[a]] = False
+    build_matrix(part, k, pb.stick, pb.sign, rows.laws, rows.WN, rows.WT, dyn.YN, dyn.YT, pb.column, pb.hrow, span,
+                 A_flat)
+    for a in range(k):
+        pb.stick[part[a]] = True
+        pb.bvec[a] = rows.gd_n[part[a]]
+    status, _ = lemke(A_flat[: k * k].reshape((k, k)), pb.bvec[:k], pb.z[:k], pb.w[:k], settings[PIVOT_MIN],
+                      settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
+    if status != SOLVED or not trusted(A_flat[: k * k].reshape((k, k)), pb.bvec[:k], pb.z[:k], k, tol_lex):
+        return  # (dependent normal rows: the squeeze between them is not determined; leave it)
+    for a in range(k):
+        c = part[a]
+        stopped[c] = pb.z[a]
+        dn[c] = pb.z[a]
+        dt[c] = 0.0
+    _apply_impulses(part, k, dn, dt, dyn.YN, dyn.YT, u)
+    _relative_velocities(part, k, rows, u)
 
 
 @jit(refcount=False)

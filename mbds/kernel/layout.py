@@ -135,8 +135,8 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
                         f((c, n)))
     problem = Problem(
         f((c, n)), f(c, i), f((c, 4), i), f(c, i), f(c, np.bool_), f(c), f(c + 1, i), f(c, i), f(c, i),
-        f((2, c, (n + 63) // 64), np.uint64), f(size * size), f(size), f(size), f(size), f(c, i), f((4, c, 3), i),
-        f(3, i), f((n + 2, n)), fwork, iwork,
+        f((2, c, (n + 63) // 64), np.uint64), f(size * size + c * c), f(size), f(size), f(size), f(c, i),
+        f((4, c, 3), i), f(3, i), f((n + 2, n)), fwork, iwork,
     )
     forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     s = ROLLBACK_SLOTS

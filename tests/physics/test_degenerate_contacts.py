@@ -12,6 +12,11 @@
   maximumPenetration 1e-8 m) touches the floor's top face and the wall's bottom face with
   opposite normals (tests/kernel/test_normal_compliance.py). There the impact's LCP ended on a
   ray at every step size, and the vertex went 0.47 mm (47,000 maximumPenetration) into the floor.
+- A polygon standing on a vertex beside one that slides over it at 0.9 m/s (seed 304:
+  maximumTimestep 3e-4 s, maximumPenetration 1e-8 m, minimumTimestep 1e-10 s). The impact's LCP,
+  whose check is relative to its largest data (the sliding speeds), left the vertex approaching
+  at 3e-8 m/s after every compression; it crept beyond maximumPenetration, and from t = 0.3097 s
+  the step stayed near minimumTimestep (30 s of wall time for 0.15 ms).
 
 Sources: the work-energy balance (the piles have no drive; their contacts, restitution below 1
 and Coulomb friction, only take energy, so the mechanical energy plus the work lost at the
@@ -19,9 +24,15 @@ contacts stays at the initial energy), and the step control's bound (docs/theory
 vertex deeper than maximumPenetration unless an over-penetration is counted).
 """
 
+import warnings
+
 import numpy as np
 
 from mbds.kernel import layout as K
+from mbds.model.load import load_model
+from mbds.simulation.buffers import RunSettings
+from mbds.simulation.run import RunStopped, initial_state, simulate
+from tests.physics import test_concave_corners
 from tests.physics.models import energy_residual
 from tests.physics.test_concave_corners import FLOOR, WALLS, depth_inside, pile, world
 
@@ -46,4 +57,30 @@ def test_a_vertex_in_the_seam_of_wall_and_floor_stays_out_of_both(tmp_path):
             outline = world(shape, pose[3 * k : 3 * k + 3])
             for fixed in [FLOOR, *WALLS]:
                 assert depth_inside(outline, fixed).max() <= max_penetration * (1.0 + 1e-9)
+    assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
+
+
+def run_at_most(steps):
+    """A runner for :func:`pile` that stops a run after ``steps`` steps: a stalled run fails
+    instead of hanging."""
+    def run(folder):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            model = load_model(folder)
+        state = initial_state(model, 0)
+
+        def progress(t):
+            if state.clock[K.STEPS] > steps:
+                raise RunStopped(f"more than {steps} steps")
+
+        return simulate(model, RunSettings(break_time=model.break_time), state=state, progress=progress)
+    return run
+
+
+def test_a_vertex_at_rest_beside_a_fast_sliding_one_keeps_the_step(tmp_path, monkeypatch):
+    monkeypatch.setattr(test_concave_corners, "run_folder", run_at_most(40_000))  # 5,000 at maximumTimestep
+    result, shapes = pile(tmp_path / "pile", 304)
+    assert not result.stopped
+    assert result.state.clock[K.T] >= 1.5 - 1e-9
+    assert result.state.clock[K.MAX_PENETRATION] <= 1e-8 * (1.0 + 1e-6)
     assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
