@@ -381,10 +381,10 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
 
 @jit(inline="always")
 def trusted(A, q, z, rows, tol_lex):
-    """Whether the accelerations of a contact-force solution z of LCP(A, q) are determined to
-    within TRUSTED_SPREAD of the data: in each of the acceleration rows i < ``rows`` (the normal
-    and stick rows), tol_lex times the size of the terms that cancel, sum_j |A_ij z_j| (m/s^2),
-    stays below TRUSTED_SPREAD max|q_i| over those rows."""
+    """Whether the accelerations (m/s^2; velocities, m/s, for impulses) of a solution z of a
+    contact LCP(A, q) are determined to within TRUSTED_SPREAD of the data: in each of the rows
+    i < ``rows`` (the normal and stick rows), tol_lex times the size of the terms that cancel,
+    sum_j |A_ij z_j|, stays below TRUSTED_SPREAD max|q_i| over those rows."""
     data = 0.0
     for i in range(rows):
         data = max(data, abs(q[i]))
