@@ -118,7 +118,8 @@ Events = namedtuple("Events", "data count")
 def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, fwork, iwork) -> Workspace:
     """Scratch arrays for n coordinates, m dependent coordinates, nb bodies, ``points`` shape
     points, ``pairs`` contact pairs and up to ``capacity`` simultaneous contacts (LCPs of size
-    up to 3 * capacity, with the LCP solver's scratch fwork, iwork)."""
+    up to 3 * capacity, and room besides for the normal rows of an impact's contacts, see
+    mbds.kernel.impact; with the LCP solver's scratch fwork, iwork)."""
     c, size = capacity, 3 * capacity
     f = np.zeros
     bodies = Bodies(

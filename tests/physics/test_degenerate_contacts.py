@@ -79,7 +79,7 @@ def run_at_most(steps):
 
 def test_a_vertex_at_rest_beside_a_fast_sliding_one_keeps_the_step(tmp_path, monkeypatch):
     monkeypatch.setattr(test_concave_corners, "run_folder", run_at_most(40_000))  # 5,000 at maximumTimestep
-    result, shapes = pile(tmp_path / "pile", 304)
+    result, _ = pile(tmp_path / "pile", 304)
     assert not result.stopped
     assert result.state.clock[K.T] >= 1.5 - 1e-9
     assert result.state.clock[K.MAX_PENETRATION] <= 1e-8 * (1.0 + 1e-6)
