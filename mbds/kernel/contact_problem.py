@@ -347,8 +347,8 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     compliance on the stick rows (:func:`_compliant_lemke`): two stick candidates whose
     tangential rows coincide (a polygon resting flat on the floor) make the stick block singular
     to round-off. So is a contact-force solution that is not trusted (:func:`trusted`). Where
-    the end point still fails, the normal rows get a compliance too
-    (:func:`_normal_compliant_lemke`)."""
+    the end point still fails, or a contact-force solution is still not trusted (normal rows
+    that cancel as well), the normal rows get a compliance too (:func:`_normal_compliant_lemke`)."""
     if m == 0:
         return True
     A = pb.A_flat[at : at + m * m].reshape((m, m))
@@ -366,10 +366,12 @@ def solve(m, at, active, na, nh, family, kept, contacts, pb, settings, tol_lex, 
     if not solved:
         status, pivots = lemke(A, q, z, w, settings[PIVOT_MIN], settings[PIVOT_MAX], tol_lex,
                                int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
-    if nh > 0 and (status != SOLVED or family == FORCES and not trusted(A, q, z, na + nh, tol_lex)):
+    doubtful = status != SOLVED or family == FORCES and not trusted(A, q, z, na + nh, tol_lex)
+    if nh > 0 and doubtful:
         status, more = _compliant_lemke(A, q, z, w, na, nh, pb.hrow, settings, tol_lex, pb.fwork, pb.iwork)
         pivots += more
-    if status != SOLVED:
+        doubtful = status != SOLVED or family == FORCES and not trusted(A, q, z, na + nh, tol_lex)
+    if doubtful:
         status, more = _normal_compliant_lemke(A, q, z, w, na, settings, tol_lex, pb.fwork, pb.iwork)
         pivots += more
     if status != SOLVED:
