@@ -1,7 +1,7 @@
 """Time the stepping kernel on the example models, and mbds against Siconos on a bouncing ball.
 
 Run from the repository root: ``.venv/bin/python benchmarks/kernel.py``; ``--only
-ball,woodpecker`` runs only the named parts (examples, stick-slip, woodpecker, ball);
+ball,woodpecker`` runs only the named parts (examples, stick-slip, woodpecker, precision, ball);
 ``--sweep-time`` (default 1.5 s, the whole run) and ``--amplitudes`` set the stick-slip sweep
 of campaigns/wearballs over c'omega (and c'amplitude).
 
@@ -29,6 +29,11 @@ steps; its time covers the ``simulate`` call, warm. Its maximumPenetration is BA
 (the figures of docs/performance.md from before the detection kept only a vertex's nearest faces
 used 1e-3, whose default skin of 0.1 m made the first impact plastic). Install Siconos with
 ``apt-get install -y python3-siconos``; without it the comparison says so and is skipped.
+
+The woodpecker against Siconos (Moreau–Jean on the published small-angle model): at the same
+step of WOODPECKER_STEP (``woodpecker``), and at several steps, each code measured against its
+own run at a small step (``precision``: work against precision, where the two models'
+differences drop out).
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -86,6 +92,8 @@ RUNS = 3
 
 WOODPECKER_TIME, WOODPECKER_STEP = 2.0, 1e-5  # s: simulated time of both runs, Siconos' fixed step
 PUBLISHED_PERIOD = 0.1461  # s, Siconos' Woodpecker.ref (Leine, Glocker, van Campen 2003: 0.1452 s)
+PRECISION_STEPS = (1e-5, 3e-5, 1e-4)  # s: steps of the work-precision comparison
+REFERENCE_STEP = 2e-6  # s: each code's own reference run in that comparison
 
 SICONOS_WOODPECKER = """
 import json, sys, time
@@ -120,7 +128,8 @@ wall = time.perf_counter() - start
 a = np.array(rows)
 t, y, phiM, phiS = a.T
 up = np.flatnonzero((phiS[:-1] < -0.05) & (phiS[1:] >= -0.05))
-cross = t[up][t[up] > 1.0]
+cross = t[up] + (-0.05 - phiS[up]) / (phiS[up + 1] - phiS[up]) * (t[up + 1] - t[up])
+cross = cross[cross > 1.0]
 late = t > 1.0
 print(json.dumps({"steps": len(rows), "wall": wall, "period": float(np.diff(cross).mean()),
                   "descent": float(-(y[late][-1] - y[late][0]) / (t[late][-1] - t[late][0])),
@@ -153,11 +162,11 @@ SICONOS = textwrap.dedent("""
 """)
 
 
-def siconos_best(script: str, *args) -> dict | None:
-    """The output (a dict with its ``wall`` time) of the fastest of RUNS runs of a Siconos
+def siconos_best(script: str, *args, runs: int = RUNS) -> dict | None:
+    """The output (a dict with its ``wall`` time) of the fastest of ``runs`` runs of a Siconos
     script in SICONOS_PYTHON; None (and a line saying so) when Siconos is missing or fails."""
     best = None
-    for _ in range(RUNS):
+    for _ in range(runs):
         try:
             out = subprocess.run([SICONOS_PYTHON, "-c", script, *map(str, args)], capture_output=True, text=True,
                                  check=True, env={**os.environ, **SINGLE_THREAD})
@@ -199,15 +208,15 @@ def command_time(folder: Path, cache: Path, break_time: float) -> float | None:
     return wall if done.returncode == 0 else None
 
 
-def timed_run(folder: Path, break_time: float) -> tuple[float, float, RunResult]:
+def timed_run(folder: Path, break_time: float, runs: int = RUNS) -> tuple[float, float, RunResult]:
     """(steps, wall seconds, result) of a warm in-process run of ``folder`` to ``break_time``;
-    the time is the best of RUNS runs."""
+    the time is the best of ``runs`` runs."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = load_model(folder)
     simulate(model, RunSettings(break_time=min(break_time, 0.01)))  # warm-up: compiles the stepper
     best = np.inf
-    for _ in range(RUNS):
+    for _ in range(runs):
         start = time.perf_counter()
         result = simulate(model, RunSettings(break_time=break_time))
         best = min(best, time.perf_counter() - start)
@@ -312,7 +321,65 @@ def woodpecker(cache_root: Path) -> None:
           f"{theirs['wall'] / WOODPECKER_TIME:.2f} |")
 
 
-PARTS = {"examples": examples, "stick-slip": stick_slip, "woodpecker": woodpecker, "ball": bouncing_ball}
+def woodpecker_precision(cache_root: Path) -> None:
+    """Work against precision on the woodpecker: both codes at the steps PRECISION_STEPS (mbds:
+    maximumTimestep of a copy of campaigns/woodpecker; Siconos: its fixed step), each measured
+    against its own run at REFERENCE_STEP, so that the model differences (mbds' polygons
+    against the small-angle model) drop out. The deviation is the largest relative difference
+    of the period, the descent, the sleeve's amplitude and the bird's range from the reference
+    run. The last line compares Siconos at WOODPECKER_STEP with the fastest mbds run that
+    deviates no more."""
+    print("\n## woodpecker, work against precision (each code against its own run at "
+          f"{REFERENCE_STEP:g} s)\n")
+    print("| | step s | period ms | descent mm/s | sleeve amplitude rad | bird range rad | deviation | "
+          "wall s per simulated s |")
+    print("|---|---|---|---|---|---|---|---|")
+    os.environ["MBDS_CACHE_DIR"] = str(cache_root / "woodpecker")
+    ours, theirs = {}, {}
+    for step in (REFERENCE_STEP, *PRECISION_STEPS):
+        runs = 1 if step == REFERENCE_STEP else RUNS
+        _, wall, result = timed_run(woodpecker_copy(cache_root / f"woodpecker-{step:g}", step), WOODPECKER_TIME, runs)
+        impacts = velocity_jumps(result.time, result.u, result.a, (1.0, 0.01, 0.015), 1e-3)
+        found = cycle_figures(result.time, result.q, impacts, 1.0)
+        ours[step] = (found.period, found.descent_speed, 0.5 * np.subtract(*found.ring_limits[::-1]),
+                      np.subtract(*found.bird_limits[::-1]), wall / WOODPECKER_TIME)
+        out = siconos_best(SICONOS_WOODPECKER, step, WOODPECKER_TIME, runs=runs)
+        if out is not None:
+            theirs[step] = (out["period"], out["descent"], 0.5 * (out["ring"][1] - out["ring"][0]),
+                            out["bird"][1] - out["bird"][0], out["wall"] / WOODPECKER_TIME)
+    deviation = {}
+    for name, figures in (("mbds", ours), ("Siconos", theirs)):
+        for step, (period, descent, sleeve, bird, cost) in figures.items():
+            reference = np.array(figures[REFERENCE_STEP][:4])
+            deviation[name, step] = float(np.max(np.abs(np.array((period, descent, sleeve, bird)) / reference - 1.0)))
+            print(f"| {name} | {step:g} | {1e3 * period:.3f} | {1e3 * descent:.2f} | {sleeve:.5f} | {bird:.5f} | "
+                  f"{deviation[name, step]:.3%} | {cost:.3f} |")
+    if WOODPECKER_STEP not in theirs:
+        return
+    allowed = deviation["Siconos", WOODPECKER_STEP]
+    within = [step for step in PRECISION_STEPS if deviation["mbds", step] <= allowed]
+    if within:
+        step = max(within)
+        print(f"\nSiconos at {WOODPECKER_STEP:g} s deviates by {allowed:.3%}; mbds at {step:g} s by "
+              f"{deviation['mbds', step]:.3%}, {theirs[WOODPECKER_STEP][4] / ours[step][4]:.1f} x faster "
+              f"(at the same step: {theirs[WOODPECKER_STEP][4] / ours[WOODPECKER_STEP][4]:.1f} x)")
+    else:
+        print(f"\nno mbds run deviates by no more than Siconos at {WOODPECKER_STEP:g} s ({allowed:.3%})")
+
+
+def woodpecker_copy(folder: Path, step: float) -> Path:
+    """A copy of campaigns/woodpecker in ``folder`` with maximumTimestep ``step`` (s)."""
+    shutil.copytree(ROOT / "campaigns" / "woodpecker", folder, dirs_exist_ok=True)
+    world = folder / "woodpecker.wld"
+    text, count = re.subn(r"(?m)^maximumTimestep\s*=.*$", f"maximumTimestep = {step!r}", world.read_text())
+    if count != 1:
+        raise SystemExit(f"{world}: no single maximumTimestep line to replace")
+    world.write_text(text)
+    return folder
+
+
+PARTS = {"examples": examples, "stick-slip": stick_slip, "woodpecker": woodpecker, "precision": woodpecker_precision,
+         "ball": bouncing_ball}
 
 
 def main() -> None:

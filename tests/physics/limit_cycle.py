@@ -59,10 +59,12 @@ def swings_per_period(swings: np.ndarray, tolerance: float = 0.01, most: int = 4
 
 
 def cycle_figures(time: np.ndarray, q: np.ndarray, impact_times: np.ndarray, skip: float) -> CycleFigures:
-    """Figures of the motion after ``skip`` (s), over whole periods only."""
+    """Figures of the motion after ``skip`` (s), over whole periods only; a period starts where
+    the bird angle, interpolated linearly between samples, crosses SWING upward."""
     bird = q[:, 2]
     up = np.flatnonzero((bird[:-1] < SWING) & (bird[1:] >= SWING))
-    starts = time[up][time[up] >= skip]
+    crossings = time[up] + (SWING - bird[up]) / (bird[up + 1] - bird[up]) * (time[up + 1] - time[up])
+    starts = crossings[crossings >= skip]
     if len(starts) < 2:
         return CycleFigures(np.zeros(0), 1, (np.nan, np.nan), (np.nan, np.nan), np.nan, np.nan)
     swings = swings_per_period(np.diff(starts))
