@@ -465,7 +465,8 @@ def _negative(q):
 def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active, one LCP per group of coupled
     contacts (mbds.kernel.components: pb.active is reordered by group), and the accelerations
-    acc = M^-1 (h + W lambda); False when an LCP failed (its group's forces are then 0)."""
+    acc = M^-1 (h + W lambda); False when an LCP failed (its group's forces are then 0, and
+    its contacts are flagged in pb.jammed)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
     ok = True
@@ -508,6 +509,8 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
         if solved:
             tangential_forces(part, k, stick, sign, rows.laws, pb.z, lam_n, lam_t)
             kept += k
+        for a in range(k):
+            pb.jammed[part[a]] = not solved
         ok = ok and solved
     keep_states(pb, FORCES, kept)
     for k in range(n):
@@ -523,19 +526,21 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
 def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """The contacts at rest (:func:`resting_contacts`), their forces and the accelerations;
     returns (number of contacts at rest, solved)."""
-    na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, settings)
+    na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
     ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
     return na, ok
 
 
 @jit(refcount=False)
-def resting_contacts(nc, gap, gd_n, gd_t, active, stick, sign, settings):
+def resting_contacts(nc, gap, gd_n, gd_t, active, stick, sign, jammed, settings):
     """The contacts at rest among the nc detected (closed and not separating faster than the rest
     velocity, or held and slower than it either way) into active; stick: slower than the stick
-    threshold tangentially; sign: the direction of sliding. Returns their number."""
+    threshold tangentially; sign: the direction of sliding; jammed cleared (see
+    :func:`accelerations`). Returns their number."""
     rest = rest_velocity(settings)
     na = 0
     for i in range(nc):
+        jammed[i] = False
         if closed(gap[i], settings) and gd_n[i] <= rest or held(gap[i], settings) and abs(gd_n[i]) <= rest:
             active[na] = i
             na += 1

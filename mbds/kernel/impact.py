@@ -19,7 +19,7 @@ from mbds.kernel.contact_problem import (
     trusted,
 )
 from mbds.kernel.jit import jit
-from mbds.kernel.layout import DRIVE_WORK, LOST, MAX_PIVOTS, PIVOT_MAX, PIVOT_MIN
+from mbds.kernel.layout import DRIVE_WORK, DT_MAX, LOST, MAX_PIVOTS, PIVOT_MAX, PIVOT_MIN
 from mbds.kernel.lcp import SOLVED, lemke
 from mbds.kernel.linalg import span_dot
 from mbds.kernel.rollback import record
@@ -34,10 +34,14 @@ approaching at 3e-8 m/s, and beyond maximumPenetration that held the step at min
 
 @jit(refcount=False)
 def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
-           point_interval, back, events, t):
+           point_interval, back, events, t, jam):
     """Compression and expansion LCPs over the closed contacts of each group of coupled contacts
     (mbds.kernel.components) that holds an impacting one (:func:`impacts`); the other groups
-    are left to the contact forces of the step. Updates u (and the relative velocities
+    are left to the contact forces of the step. With ``jam``, the groups that hold a contact
+    flagged in pb.jammed take an impact without collision instead: their contact-force LCP has
+    no solution (Painlevé's case), and the compression's data are the rates after a maximum step
+    of motion without contact forces (g' + dt_max (W^T M^-1 h + w-bar)), so that its impulse
+    stops the approach that motion would make. Updates u (and the relative velocities
     rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when an LCP
     failed: velocities are then left unchanged (a compression failed) or a group whose
     expansion failed keeps those after compression (a plastic impact). A group whose contacts
@@ -53,7 +57,8 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
             active[na] = i
             na += 1
     ng = split_components(active, na, WN, WT, YN, YT, group, pb.root, pb.grouped, pb.masks)
-    na, ng = _impacting_groups(active, group, ng, contacts.gap, gd_n, settings)
+    na, ng = _impacting_groups(active, group, ng, contacts.gap, gd_n, jam, pb.jammed, settings)
+    ahead = settings[DT_MAX] if jam else 0.0
     for a in range(na):
         c = active[a]
         pb.stick[c] = True
@@ -70,8 +75,8 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
                      pb.A_flat[at:])
         for a in range(k):
             c = part[a]
-            bvec[a] = gd_n[c]
-            bvec[k + a] = gd_t[c]
+            bvec[a] = gd_n[c] + ahead * (row_dot(WN, c, dyn.minv_h) + rows.wbar_n[c])
+            bvec[k + a] = gd_t[c] + ahead * (row_dot(WT, c, dyn.minv_h) + rows.wbar_t[c])
             bvec[2 * k + a] = 0.0
         if not solve(3 * k, at, part, k, k, COMPRESSION, s, contacts, pb, settings, tol_lex, events, t):
             return False
@@ -196,16 +201,17 @@ def _stop_approach(part, pb, rows, dyn, stopped, dn, dt, u, settings, tol_lex, s
 
 
 @jit(refcount=False)
-def _impacting_groups(active, group, ng, gap, gd_n, settings):
-    """Keep the groups active[group[g]:group[g + 1]] that hold an impacting contact, moved to
-    the front in their order; return (their number of contacts, their number)."""
+def _impacting_groups(active, group, ng, gap, gd_n, jam, jammed, settings):
+    """Keep the groups active[group[g]:group[g + 1]] that hold an impacting contact (with ``jam``:
+    a jammed one), moved to the front in their order; return (their number of contacts, their
+    number)."""
     na = 0
     kept = 0
     for g in range(ng):
         start, end = group[g], group[g + 1]
         hit = False
         for a in range(start, end):
-            hit = hit or impacts(gap[active[a]], gd_n[active[a]], settings)
+            hit = hit or (jammed[active[a]] if jam else impacts(gap[active[a]], gd_n[active[a]], settings))
         if hit:
             group[kept] = na
             for a in range(start, end):

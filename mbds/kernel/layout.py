@@ -79,9 +79,13 @@ contacts."""
 
 Problem = namedtuple(
     "Problem",
-    "column hrow span active stick sign group root grouped masks A_flat bvec z w state memory memory_count gram fwork iwork",
+    (
+        "column hrow span active stick sign jammed group root grouped masks A_flat bvec z w state memory memory_count"
+        " gram fwork iwork"
+    ),
 )
-"""The LCPs being set up and solved: contact set (active, stick, sign), its independent groups
+"""The LCPs being set up and solved: contact set (active, stick, sign; jammed: in a group whose
+contact-force LCP failed at its last solve), its independent groups
 (mbds.kernel.components: bounds, scratch and the nonzero columns of W and Y rows), matrices,
 vectors, the contact states (mbds.kernel.active_set) being tried and those remembered for the 2
 impact LCPs and the contact-force LCPs (rows: vertex, edge, state; a fourth slot collects those of
@@ -135,7 +139,8 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
     dynamics = Dynamics(f((n, n)), f((n, n)), f((2, n), i), np.full((n, n), np.nan), f(n), f(n), f((c, n)),
                         f((c, n)))
     problem = Problem(
-        f((c, n)), f(c, i), f((c, 4), i), f(c, i), f(c, np.bool_), f(c), f(c + 1, i), f(c, i), f(c, i),
+        f((c, n)), f(c, i), f((c, 4), i), f(c, i), f(c, np.bool_), f(c), f(c, np.bool_), f(c + 1, i), f(c, i),
+        f(c, i),
         f((2, c, (n + 63) // 64), np.uint64), f(size * size + c * c), f(size), f(size), f(size), f(c, i),
         f((4, c, 3), i), f(3, i), f((n + 2, n)), fwork, iwork,
     )

@@ -217,22 +217,13 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
-                            point_loss, point_interval, back, events, t)
-            # everything that depends on the velocities, again at the post-impact state (the
-            # positions did not change: M, the force directions and M^-1 W stay)
-            _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
-            _contact_rows(nc, contacts, model, bodies, rows)
-            contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
-            free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn)
+                            point_loss, point_interval, back, events, t, False)
+            _after_impulses(dependent_state, dependent_jacobian, mass_matrix, h_vector, contact_law, model, q, u, t,
+                            nc, point_interval, events, bodies, contacts, rows, dyn)
         # --- 5: forces between impacts
         # (the stepper calls the LCP set-up only where there are contacts: passing it the bundles costs
         # more than a step in flight)
-        na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, settings)
-        if na > 0:
-            forces_ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
-                                      a1, events, t)
-        else:
-            forces_ok = free_accelerations(dyn.minv_h, a1)
+        na, forces_ok = _resting_forces(nc, contacts, rows, dyn, pb, forces, settings, tol_lex, events, t)
         solved = solved and forces_ok
         if not solved:
             clock[LCP_FAILURES] += 1.0
@@ -244,6 +235,13 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 back.tracked[0] = 0
                 continue
+            if not forces_ok:  # no contact forces continue the motion: an impact without collision
+                impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
+                       point_interval, back, events, t, True)
+                _after_impulses(dependent_state, dependent_jacobian, mass_matrix, h_vector, contact_law, model, q, u,
+                                t, nc, point_interval, events, bodies, contacts, rows, dyn)
+                impacting = True
+                na, forces_ok = _resting_forces(nc, contacts, rows, dyn, pb, forces, settings, tol_lex, events, t)
         # --- 6: step size
         # (the speeds at u are those of step 2 unless an impact changed u)
         body_motion(model.carrier, bodies.B, bodies.bhat, bodies.beta, u, a1, a1, impacting, bodies.motion)
@@ -344,6 +342,28 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
     clock[LOST] -= 0.5 * dt * power
     clock[DRIVE_WORK] += 0.5 * dt * drive
     clock[T] = t2
+
+
+@jit(inline="always")
+def _after_impulses(dependent_state, dependent_jacobian, mass_matrix, h_vector, contact_law, model, q, u, t, nc,
+                    point_interval, events, bodies, contacts, rows, dyn):
+    """Everything that depends on the velocities, again after impulses changed u (the positions
+    did not change: M, the force directions and M^-1 W stay)."""
+    _body_kinematics(dependent_state, dependent_jacobian, model, q, u, t, bodies)
+    _contact_rows(nc, contacts, model, bodies, rows)
+    contact_laws(contact_law, nc, contacts, model, point_interval, rows, events, t)
+    free_dynamics(mass_matrix, h_vector, q, u, t, model.p, dyn)
+
+
+@jit(inline="always")
+def _resting_forces(nc, contacts, rows, dyn, pb, forces, settings, tol_lex, events, t):
+    """The contacts at rest, their forces (forces.lam_n1, lam_t1) and the accelerations
+    forces.a1 at the start of the step: (their number, solved)."""
+    na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
+    if na > 0:
+        return na, accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
+                                 forces.a1, events, t)
+    return na, free_accelerations(dyn.minv_h, forces.a1)
 
 
 @jit(inline="always")

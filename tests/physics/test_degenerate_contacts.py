@@ -15,6 +15,13 @@
   the accelerations (not trusted); one Heun step with them spun the polygon from 11.5 to 38 rad/s
   and made 35 mJ. In seed 460 (maximumTimestep 1e-4 s, maximumPenetration 1e-6 m) such forces
   made 2 % of the run's largest energy.
+- A spike sliding in a narrow slot of a neighbour (seed 704: friction 0.69, maximumTimestep
+  1e-3 s, maximumPenetration 1e-5 m). At t = 0.74 s the contact-force LCP of the slot's two
+  faces, the spike's neighbour and the floor has no solution (friction turns the spike into both
+  faces, as in Painlevé's case; its 4 x 4 LCP has none among its 16 complementary sets). Left
+  without forces, its contacts, already 0.3-0.7 maxPen deep, were caught by the penetration
+  check before they approached fast enough for an impact: the run took 9.9 million steps (1.7
+  million over-penetrations) to reach 1.5 s.
 - A vertex in the seam where a wall stands on the floor (seed 107: maximumTimestep 3e-4 s,
   maximumPenetration 1e-8 m) touches the floor's top face and the wall's bottom face with
   opposite normals (tests/kernel/test_normal_compliance.py). There the impact's LCP ended on a
@@ -69,12 +76,18 @@ def test_a_vertex_in_the_seam_of_wall_and_floor_stays_out_of_both(tmp_path):
     assert result.state.clock[K.T] >= 1.5 - 1e-9
     assert result.state.clock[K.LCP_FAILURES] == 0
     assert result.state.clock[K.OVER_PENETRATIONS] == 0
+    assert_out_of_the_box(result, shapes, max_penetration)
+    assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
+
+
+def assert_out_of_the_box(result, shapes, max_penetration):
+    """No vertex of a pile's polygons is sampled deeper than max_penetration (m) in the floor or
+    the walls."""
     for pose in result.q:
         for k, shape in enumerate(shapes):
             outline = world(shape, pose[3 * k : 3 * k + 3])
             for fixed in [FLOOR, *WALLS]:
                 assert depth_inside(outline, fixed).max() <= max_penetration * (1.0 + 1e-9)
-    assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
 
 
 def run_at_most(steps):
@@ -100,4 +113,14 @@ def test_a_vertex_at_rest_beside_a_fast_sliding_one_keeps_the_step(tmp_path, mon
     assert not result.stopped
     assert result.state.clock[K.T] >= 1.5 - 1e-9
     assert result.state.clock[K.MAX_PENETRATION] <= 1e-8 * (1.0 + 1e-6)
+    assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
+
+
+def test_a_spike_jammed_in_a_slot_takes_an_impact_without_collision(tmp_path, monkeypatch):
+    monkeypatch.setattr(test_concave_corners, "run_folder", run_at_most(20_000))  # 1,500 at maximumTimestep
+    result, shapes = pile(tmp_path / "pile", 704)
+    assert not result.stopped
+    assert result.state.clock[K.T] >= 1.5 - 1e-9
+    assert result.state.clock[K.OVER_PENETRATIONS] == 0
+    assert_out_of_the_box(result, shapes, 1e-5)
     assert (-energy_residual(result)).max() <= 1e-6 * result.energy[0]
