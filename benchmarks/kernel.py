@@ -307,8 +307,7 @@ def woodpecker(cache_root: Path) -> None:
     print("|---|---|---|---|---|---|---|")
     os.environ["MBDS_CACHE_DIR"] = str(cache_root / "woodpecker")
     _, wall, result = timed_run(ROOT / "campaigns" / "woodpecker", WOODPECKER_TIME)
-    impacts = velocity_jumps(result.time, result.u, result.a, (1.0, 0.01, 0.015), 1e-3)
-    ours = cycle_figures(result.time, result.q, impacts, 1.0)
+    ours = woodpecker_cycle(result)
     print(f"| mbds | {1e3 * ours.period:.2f} | {ours.period / PUBLISHED_PERIOD - 1:+.2%} | "
           f"{1e3 * ours.descent_speed:.1f} | {ours.ring_limits[0]:.4f} .. {ours.ring_limits[1]:.4f} | "
           f"{ours.bird_limits[0]:.4f} .. {ours.bird_limits[1]:.4f} | {wall / WOODPECKER_TIME:.2f} |")
@@ -339,18 +338,18 @@ def woodpecker_precision(cache_root: Path) -> None:
     for step in (REFERENCE_STEP, *PRECISION_STEPS):
         runs = 1 if step == REFERENCE_STEP else RUNS
         _, wall, result = timed_run(woodpecker_copy(cache_root / f"woodpecker-{step:g}", step), WOODPECKER_TIME, runs)
-        impacts = velocity_jumps(result.time, result.u, result.a, (1.0, 0.01, 0.015), 1e-3)
-        found = cycle_figures(result.time, result.q, impacts, 1.0)
-        ours[step] = (found.period, found.descent_speed, 0.5 * np.subtract(*found.ring_limits[::-1]),
-                      np.subtract(*found.bird_limits[::-1]), wall / WOODPECKER_TIME)
+        found = woodpecker_cycle(result)
+        ring, bird = found.ring_limits, found.bird_limits
+        ours[step] = (found.period, found.descent_speed, 0.5 * (ring[1] - ring[0]), bird[1] - bird[0],
+                      wall / WOODPECKER_TIME)
         out = siconos_best(SICONOS_WOODPECKER, step, WOODPECKER_TIME, runs=runs)
         if out is not None:
             theirs[step] = (out["period"], out["descent"], 0.5 * (out["ring"][1] - out["ring"][0]),
                             out["bird"][1] - out["bird"][0], out["wall"] / WOODPECKER_TIME)
     deviation = {}
     for name, figures in (("mbds", ours), ("Siconos", theirs)):
+        reference = np.array(figures.get(REFERENCE_STEP, (np.nan,) * 5)[:4])
         for step, (period, descent, sleeve, bird, cost) in figures.items():
-            reference = np.array(figures[REFERENCE_STEP][:4])
             deviation[name, step] = float(np.max(np.abs(np.array((period, descent, sleeve, bird)) / reference - 1.0)))
             print(f"| {name} | {step:g} | {1e3 * period:.3f} | {1e3 * descent:.2f} | {sleeve:.5f} | {bird:.5f} | "
                   f"{deviation[name, step]:.3%} | {cost:.3f} |")
@@ -365,6 +364,13 @@ def woodpecker_precision(cache_root: Path) -> None:
               f"(at the same step: {theirs[WOODPECKER_STEP][4] / ours[WOODPECKER_STEP][4]:.1f} x)")
     else:
         print(f"\nno mbds run deviates by no more than Siconos at {WOODPECKER_STEP:g} s ({allowed:.3%})")
+
+
+def woodpecker_cycle(result: RunResult):
+    """The limit cycle's figures of a woodpecker run (tests.physics.limit_cycle), over its second
+    second."""
+    impacts = velocity_jumps(result.time, result.u, result.a, (1.0, 0.01, 0.015), 1e-3)
+    return cycle_figures(result.time, result.q, impacts, 1.0)
 
 
 def woodpecker_copy(folder: Path, step: float) -> Path:
