@@ -462,11 +462,12 @@ def _negative(q):
 
 
 @jit(inline="always")
-def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+def accelerations(na, contacts, settle_gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active, one LCP per group of coupled
     contacts (mbds.kernel.components: pb.active is reordered by group), and the accelerations
     acc = M^-1 (h + W lambda); False when an LCP failed (its group's forces are then 0, and
-    its contacts are flagged in pb.jammed)."""
+    its contacts are flagged in pb.jammed). settle_gap (m, per contact): the gaps whose
+    settling speeds the rest targets take, those of the step's start at both ends of a step."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
     ok = True
@@ -488,7 +489,7 @@ def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, 
         target = pb.z  # the rest targets, then the LCP's solution
         for a in range(k):
             c = part[a]
-            left = rows.gd_n[c] - settling_speed(contacts.gap[c], settings) if rows.gd_n[c] >= -rest else 0.0
+            left = rows.gd_n[c] - settling_speed(settle_gap[c], settings) if rows.gd_n[c] >= -rest else 0.0
             target[a] = left * relaxation
         for h in range(nh):
             target[k + h] = rows.gd_t[part[pb.hrow[h]]] * relaxation
@@ -527,7 +528,7 @@ def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t,
     """The contacts at rest (:func:`resting_contacts`), their forces and the accelerations;
     returns (number of contacts at rest, solved)."""
     na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
-    ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
+    ok = accelerations(na, contacts, contacts.gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
     return na, ok
 
 

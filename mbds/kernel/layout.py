@@ -91,9 +91,12 @@ vectors, the contact states (mbds.kernel.active_set) being tried and those remem
 impact LCPs and the contact-force LCPs (rows: vertex, edge, state; a fourth slot collects those of
 the groups being solved), scratch (gram: for mbds.kernel.redundancy)."""
 
-Forces = namedtuple("Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t compression_loss a1 a2 q_star u_star")
+Forces = namedtuple(
+    "Forces", "lam_n lam_t lam_n1 lam_t1 imp_n imp_t gam_n gam_t gap0 compression_loss a1 a2 q_star u_star",
+)
 """Contact forces (N) at the end and start of a step, impulses (N s), velocities before a
-phase, compression losses (J), accelerations at both ends and Heun's predictor state."""
+phase, the gaps at the step's start (m), compression losses (J), accelerations at both ends and
+Heun's predictor state."""
 
 # slots of the rollback: the starts of the last three steps, LAST_SLOT the most recent
 ROLLBACK_SLOTS = 3
@@ -144,7 +147,7 @@ def workspace(n: int, m: int, nb: int, points: int, pairs: int, capacity: int, f
         f((2, c, (n + 63) // 64), np.uint64), f(size * size + c * c), f(size), f(size), f(size), f(c, i),
         f((4, c, 3), i), f(3, i), f((n + 2, n)), fwork, iwork,
     )
-    forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
+    forces = Forces(f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(c), f(n), np.full(n, np.nan), f(n), f(n))
     s = ROLLBACK_SLOTS
     rollback = Rollback(
         f((s, n)), f((s, n)), f((s, CLOCK)), f((s, points)), f((s, 2 * c, 3), i), f((s, 2 * c, RECORD_COLUMNS)),

@@ -308,6 +308,7 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         drive -= lam_n1[i] * what_n[i] + lam_t1[i] * what_t[i]
         gam_n[i] = gd_n[i]
         gam_t[i] = gd_t[i]
+        forces.gap0[i] = contacts.gap[i]
     for k in range(n):
         q_star[k] = q[k] + dt * u[k]
         u_star[k] = u[k] + dt * a1[k]
@@ -320,7 +321,8 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         _contact_kinematics(active, na, contacts, model, bodies, rows)
     end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, active, na)
     if na > 0:
-        end_ok = end_ok and accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
+        end_ok = end_ok and accelerations(na, contacts, forces.gap0, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2,
+                                          events, t2)
     else:
         end_ok = end_ok and free_accelerations(dyn.minv_h, a2)
     if not end_ok:
@@ -361,7 +363,7 @@ def _resting_forces(nc, contacts, rows, dyn, pb, forces, settings, tol_lex, even
     forces.a1 at the start of the step: (their number, solved)."""
     na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
     if na > 0:
-        return na, accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
+        return na, accelerations(na, contacts, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
                                  forces.a1, events, t)
     return na, free_accelerations(dyn.minv_h, forces.a1)
 
