@@ -103,9 +103,9 @@ def rest_velocity(settings):
 
 @jit(inline="always")
 def settling_speed(gap, settings):
-    """The normal speed (m/s) toward zero gap that a contact at rest relaxes to:
-    -gap / (4 REST_RELAXATION dt_max), within half the rest velocity either way. With the decay
-    of :func:`accelerations` the gap settles as a critically damped oscillator, without
+    """The speed (m/s) toward zero gap at which a contact at rest settles:
+    -gap / (4 REST_RELAXATION dt_max), within half the rest velocity either way. The positions
+    move at it (mbds.kernel.settling), not the velocities: the gap decays exponentially, without
     overshoot, and a penetration is pushed out slower than the rest velocity."""
     bound = 0.5 * rest_velocity(settings)
     return min(max(-gap / (4.0 * REST_RELAXATION * settings[DT_MAX]), -bound), bound)
@@ -462,20 +462,19 @@ def _negative(q):
 
 
 @jit(inline="always")
-def accelerations(na, contacts, settle_gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
+def accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t):
     """Contact forces (N) of the na contacts in pb.active, one LCP per group of coupled
     contacts (mbds.kernel.components: pb.active is reordered by group), and the accelerations
     acc = M^-1 (h + W lambda); False when an LCP failed (its group's forces are then 0, and
-    its contacts are flagged in pb.jammed). settle_gap (m, per contact): the gaps whose
-    settling speeds the rest targets take, those of the step's start at both ends of a step."""
+    its contacts are flagged in pb.jammed)."""
     active, stick, sign = pb.active, pb.stick, pb.sign
     n = acc.shape[0]
     ok = True
-    # a contact slower than the rest velocity holds with g_N'' = -(g_N' - v_s) / (REST_RELAXATION dt_max),
-    # v_s its settling speed (:func:`settling_speed`), a sticking one with g_T'' = -g_T' / (REST_RELAXATION
-    # dt_max): the speeds left below the rest velocity and the stick threshold decay instead of drifting on,
-    # either way, and the gap settles to zero (a faster approach keeps its speed until the impact law takes
-    # it: see :func:`impacts`); the targets of a group whose rows are dependent are projected onto the
+    # a contact slower than the rest velocity holds with g_N'' = -g_N' / (REST_RELAXATION dt_max), a sticking
+    # one with g_T'' = -g_T' / (REST_RELAXATION dt_max): the speeds left below the rest velocity and the stick
+    # threshold decay instead of drifting on, either way (a faster approach keeps its speed until the impact
+    # law takes it: see :func:`impacts`; the gap settles to zero at the position level, mbds.kernel.settling);
+    # the targets of a group whose rows are dependent are projected onto the
     # targets one motion meets (mbds.kernel.redundancy)
     relaxation = 1.0 / (REST_RELAXATION * settings[DT_MAX])
     rest = rest_velocity(settings)
@@ -489,7 +488,7 @@ def accelerations(na, contacts, settle_gap, rows, dyn, pb, settings, tol_lex, la
         target = pb.z  # the rest targets, then the LCP's solution
         for a in range(k):
             c = part[a]
-            left = rows.gd_n[c] - settling_speed(settle_gap[c], settings) if rows.gd_n[c] >= -rest else 0.0
+            left = rows.gd_n[c] if rows.gd_n[c] >= -rest else 0.0
             target[a] = left * relaxation
         for h in range(nh):
             target[k + h] = rows.gd_t[part[pb.hrow[h]]] * relaxation
@@ -528,7 +527,7 @@ def contact_forces(nc, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t,
     """The contacts at rest (:func:`resting_contacts`), their forces and the accelerations;
     returns (number of contacts at rest, solved)."""
     na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
-    ok = accelerations(na, contacts, contacts.gap, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
+    ok = accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, acc, events, t)
     return na, ok
 
 

@@ -100,6 +100,7 @@ from mbds.kernel.motion import body_motion, detection_margins, reach_limit
 from mbds.kernel.random import uniform
 from mbds.kernel.rollback import begin_step, forget_steps, go_back, kept_slot, record
 from mbds.kernel.sampling import sample
+from mbds.kernel.settling import settle_positions
 
 _MASS_MATRIX, _H_VECTOR, _DEPENDENT_STATE, _DEPENDENT_JACOBIAN, _MECHANICAL_ENERGY, _CONTACT_LAW = (
     function_at(signature) for signature in MODEL_FUNCTIONS.values())
@@ -253,8 +254,9 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
             dt = target - t
             t2 = target
         # --- 7: Heun step with the contact set of step 5
-        _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
-              t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back)
+        _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, mechanical_energy, model, settings, tol_lex,
+              clock, q, u, t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces,
+              back)
         back.tracked[0] = nc
         if heated:
             cool(model.point_heat, point_interval, dt)
@@ -287,13 +289,15 @@ def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
 
 
 @jit(inline="always")
-def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, settings, tol_lex, clock, q, u,
-          t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back):
+def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, mechanical_energy, model, settings, tol_lex,
+          clock, q, u, t2, dt, na, point_loss, point_interval, events, bodies, contacts, rows, dyn, pb, forces, back):
     """Heun's method (explicit trapezoidal rule) from clock[T] to t2 = clock[T] + dt with the
     contact set of the start; contact forces are solved again at the predicted end point and
     the lost work of each contact is integrated by the trapezoidal rule. At the end point only
     the contacts of that set are followed (their geometry, rows and M^-1 W); with none, only
-    M and h are evaluated there."""
+    M and h are evaluated there. The contacts of the set then settle towards zero gap by a shift
+    of the positions alone (mbds.kernel.settling), whose change of the mechanical energy is
+    counted as lost work."""
     n = q.shape[0]
     active = pb.active
     lam_n, lam_t, lam_n1, lam_t1 = forces.lam_n, forces.lam_t, forces.lam_n1, forces.lam_t1
@@ -321,8 +325,7 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         _contact_kinematics(active, na, contacts, model, bodies, rows)
     end_ok = dynamics(mass_matrix, h_vector, q_star, u_star, t2, model.p, rows, dyn, active, na)
     if na > 0:
-        end_ok = end_ok and accelerations(na, contacts, forces.gap0, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2,
-                                          events, t2)
+        end_ok = end_ok and accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, lam_n, lam_t, a2, events, t2)
     else:
         end_ok = end_ok and free_accelerations(dyn.minv_h, a2)
     if not end_ok:
@@ -343,6 +346,10 @@ def _heun(mass_matrix, h_vector, dependent_state, dependent_jacobian, model, set
         u[k] += 0.5 * dt * (a1[k] + a2[k])
     clock[LOST] -= 0.5 * dt * power
     clock[DRIVE_WORK] += 0.5 * dt * drive
+    if na > 0:  # the contacts at rest settle towards zero gap: the positions move, the velocities do not
+        before = mechanical_energy(q, u, t2, model.p)
+        settle_positions(active, na, forces.gap0, rows.WN, dyn.YN, settings, dt, q, pb.fwork, pb.iwork)
+        clock[LOST] += before - mechanical_energy(q, u, t2, model.p)
     clock[T] = t2
 
 
@@ -363,7 +370,7 @@ def _resting_forces(nc, contacts, rows, dyn, pb, forces, settings, tol_lex, even
     forces.a1 at the start of the step: (their number, solved)."""
     na = resting_contacts(nc, contacts.gap, rows.gd_n, rows.gd_t, pb.active, pb.stick, pb.sign, pb.jammed, settings)
     if na > 0:
-        return na, accelerations(na, contacts, contacts.gap, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
+        return na, accelerations(na, contacts, rows, dyn, pb, settings, tol_lex, forces.lam_n1, forces.lam_t1,
                                  forces.a1, events, t)
     return na, free_accelerations(dyn.minv_h, forces.a1)
 

@@ -156,14 +156,12 @@ def test_a_block_resting_between_flights_stays_level(tmp_path):
     assert np.abs(result.q[:, 2]).max() < 1e-12
 
 
-@pytest.mark.xfail(strict=True, reason="docs/theory.md §3, 'What is left': a body that lifts off while its "
-                   "contacts settle keeps its settling speed")
 def test_a_tilt_dies_out_on_a_table_that_throws_a_plastic_block(tmp_path):
     """e = 0: the block (10 x 5 cm) lands plastically and rests on both corners until the table
     (2.4 g at 15.6 Hz) throws it up again. Started 10⁻¹⁰ rad off level, the landings and rests
-    take the tilt out: with 10⁻⁵ s and 10⁻⁸ m it is at round-off (10⁻¹⁷ rad) after 0.2 s. With
-    10⁻⁴ s and 10⁻⁶ m, each lift-off carries the settling of the two corners' gaps into the
-    flight as a spin, and the tilt grows to 10⁻⁵ rad."""
+    take the tilt out (with 10⁻⁵ s and 10⁻⁸ m it is at round-off, 10⁻¹⁷ rad, after 0.2 s). While
+    the settling of the two corners' gaps moved the velocities, each lift-off carried it into the
+    flight as a spin, and with 10⁻⁴ s and 10⁻⁶ m the tilt grew to 10⁻⁵ rad."""
     omega = 2.0 * np.pi * 15.6  # rad/s
     result = on_the_table(tmp_path, 1e-4, 1e-6, 2.0, restitution=0.0, size=(0.1, 0.05), drop=0.009,
                           table=(2.4 * G / omega**2, omega), tilt=1e-10)
