@@ -197,3 +197,62 @@ def span_dot(A, i, B, j, span, a):
     for k in range(span[a, 0], span[a, 1]):
         s += A[i, k] * B[j, k]
     return s
+
+
+@jit(inline="always")
+def pivoted_cholesky(G, perm, n, tol):
+    """Factorise the symmetric positive semidefinite n x n matrix whose lower triangle G holds, in
+    place, by Cholesky with diagonal pivoting (perm: the order of the rows, set here); stop at
+    the first pivot not above ``tol`` times the largest diagonal entry. Returns the rank r: the
+    rows perm[r:] depend on the others."""
+    top = 0.0
+    for i in range(n):
+        perm[i] = i
+        top = max(top, G[i, i])
+    for j in range(n):
+        p = j
+        for i in range(j + 1, n):
+            if G[i, i] > G[p, p]:
+                p = i
+        if not G[p, p] > tol * top:
+            return j
+        if p != j:
+            _swap_symmetric(G, perm, n, j, p)
+        pivot = np.sqrt(G[j, j])
+        G[j, j] = pivot
+        for i in range(j + 1, n):
+            G[i, j] /= pivot
+        for i in range(j + 1, n):
+            for c in range(j + 1, i + 1):
+                G[i, c] -= G[i, j] * G[c, j]
+    return n
+
+
+@jit(inline="always")
+def pivoted_cholesky_solve(G, perm, r, b, x):
+    """x[:r] = the solution of the factorised rows of :func:`pivoted_cholesky` (rank r) for the
+    right-hand side b (in the original order): L y = P^T b, then L^T x = y."""
+    for j in range(r):
+        s = b[perm[j]]
+        for k in range(j):
+            s -= G[j, k] * x[k]
+        x[j] = s / G[j, j]
+    for j in range(r - 1, -1, -1):
+        s = x[j]
+        for k in range(j + 1, r):
+            s -= G[k, j] * x[k]
+        x[j] = s / G[j, j]
+
+
+@jit(inline="always")
+def _swap_symmetric(G, perm, n, j, p):
+    """Swap coordinates j < p of the symmetric n x n matrix whose lower triangle G holds (rows
+    and columns alike; the factor's columns left of j move with their rows) and in perm."""
+    perm[j], perm[p] = perm[p], perm[j]
+    for c in range(j):
+        G[j, c], G[p, c] = G[p, c], G[j, c]
+    G[j, j], G[p, p] = G[p, p], G[j, j]
+    for i in range(j + 1, p):
+        G[i, j], G[p, i] = G[p, i], G[i, j]
+    for i in range(p + 1, n):
+        G[i, j], G[i, p] = G[i, p], G[i, j]

@@ -21,9 +21,9 @@ G = W_R W_R^T), and every solution gives the same W_R^T x.
 
 from __future__ import annotations
 
-import numpy as np
 
 from mbds.kernel.jit import jit
+from mbds.kernel.linalg import pivoted_cholesky, pivoted_cholesky_solve
 
 
 @jit(inline="always")
@@ -46,7 +46,6 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
             d[i] = 0.0
         return 0
     for i in range(n):  # G's lower triangle only, here and below
-        perm[i] = i
         for j in range(i + 1):
             G[i, j] = 0.0
     for i in range(R):
@@ -56,27 +55,7 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
             if wp != 0.0:
                 for q in range(span[a, 0], p + 1):
                     G[p - lo, q - lo] += wp * W[c, q]
-    gmax = 0.0
-    for i in range(n):
-        gmax = max(gmax, G[i, i])
-    r = n
-    for j in range(n):
-        p = j
-        for i in range(j + 1, n):
-            if G[i, i] > G[p, p]:
-                p = i
-        if not G[p, p] > tol * gmax:
-            r = j
-            break
-        if p != j:
-            _swap_symmetric(G, perm, n, j, p)
-        pivot = np.sqrt(G[j, j])
-        G[j, j] = pivot
-        for i in range(j + 1, n):
-            G[i, j] /= pivot
-        for i in range(j + 1, n):
-            for c in range(j + 1, i + 1):
-                G[i, c] -= G[i, j] * G[c, j]
+    r = pivoted_cholesky(G, perm, n, tol)
     if r >= R:
         return R
     b, x = v[0], v[1]
@@ -86,16 +65,7 @@ def project_targets(part, k, nh, hrow, WN, WT, span, d, tol, G, v, perm):
         a, c, W = _group_row(i, k, hrow, part, WN, WT)
         for p in range(span[a, 0], span[a, 1]):
             b[p - lo] += W[c, p] * d[i]
-    for j in range(r):  # L y = P^T b, then L^T x = y, on the factorised coordinates
-        s = b[perm[j]]
-        for l in range(j):
-            s -= G[j, l] * x[l]
-        x[j] = s / G[j, j]
-    for j in range(r - 1, -1, -1):
-        s = x[j]
-        for l in range(j + 1, r):
-            s -= G[l, j] * x[l]
-        x[j] = s / G[j, j]
+    pivoted_cholesky_solve(G, perm, r, b, x)  # on the factorised coordinates
     for p in range(n):
         b[p] = 0.0
     for j in range(r):
@@ -115,17 +85,3 @@ def _group_row(i, k, hrow, part, WN, WT):
     the contact, and WN (normal rows, i < k) or WT (tangential rows of stick candidates)."""
     a = i if i < k else hrow[i - k]
     return a, part[a], WN if i < k else WT
-
-
-@jit(inline="always")
-def _swap_symmetric(G, perm, n, j, p):
-    """Swap coordinates j < p of the symmetric n x n matrix whose lower triangle G holds (rows
-    and columns alike; the factor's columns left of j move with their rows) and in perm."""
-    perm[j], perm[p] = perm[p], perm[j]
-    for c in range(j):
-        G[j, c], G[p, c] = G[p, c], G[j, c]
-    G[j, j], G[p, p] = G[p, p], G[j, j]
-    for i in range(j + 1, p):
-        G[i, j], G[p, i] = G[p, i], G[i, j]
-    for i in range(p + 1, n):
-        G[i, j], G[i, p] = G[i, p], G[i, j]
