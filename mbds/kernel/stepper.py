@@ -20,8 +20,8 @@ Each step, at (q, u, t):
    maximumTimestep``) form the acceleration LCP with Coulomb friction; contacts slower than the
    rest velocity tangentially are stick candidates, the others slide;
 6. the step size: grown by 1.5 up to ``maximumTimestep``, limited so that no approaching contact
-   penetrates by more than ``maximumPenetration``, at least ``minimumTimestep``, and cut to land on
-   history sample times;
+   penetrates by more than ``maximumPenetration`` and a closed contact lifting off lands where it
+   left, at least ``minimumTimestep``, and cut to land on history sample times;
 7. Heun's method (explicit trapezoidal rule) over the step, with the contact set of step 5 and
    the LCP solved again at the end point; lost work is integrated by the trapezoidal rule.
 
@@ -270,15 +270,20 @@ def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
     """The next step (s): grown by 1.5 up to maximumTimestep; after a rejected step at most half
     of it; no longer than the reach limit of every pair (no vertex beyond a detection margin can
     penetrate); limited so that no approaching open contact goes deeper than half
-    maximumPenetration by its own motion and no sliding contact passes zero sliding speed; at
-    least minimumTimestep."""
+    maximumPenetration by its own motion, no closed contact lifting off faster than the rest
+    velocity flies on below the gap it left, and no sliding contact passes zero sliding speed;
+    at least minimumTimestep."""
     dt = min(1.5 * clock[DT], settings[DT_MAX], back.cap[0])
     back.cap[0] = np.inf
     dt = reach_limit(model, bodies.motion, settings, bodies.margin, dt)
+    rest = rest_velocity(settings)
     for i in range(nc):
         if not closed(gap[i], settings):  # open: reach at most half maxPen
             accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]
             dt = min(dt, _time_to_reach(gap[i] + 0.5 * settings[MAX_PEN], rows.gd_n[i], accel))
+        elif rows.gd_n[i] > rest:  # closed and lifting off: its flight ends where it began, not deeper
+            accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]
+            dt = min(dt, _time_to_reach(0.0, rows.gd_n[i], accel))
     for a in range(na):  # a sliding contact stops at the end of the step, not beyond
         i = pb.active[a]
         if not pb.stick[i]:

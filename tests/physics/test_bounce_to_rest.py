@@ -91,3 +91,28 @@ def test_a_body_in_the_floor_settles_out_without_taking_up_a_speed(tmp_path, dep
     # the contact's work on the way out is in the lost work: the energy balance holds
     residual = energy_residual(result)
     assert np.abs(residual).max() <= 1e-3 * mass * G * abs(g0)
+
+
+@pytest.mark.parametrize("e", [0.5, 0.8])
+def test_a_lift_off_shorter_than_a_step_lands_as_fast_as_it_left(tmp_path, e):
+    """A block lying on the floor leaves it at v0 = 5 v_rest (Newton's law as above): its flight,
+    2 v0 / g, is a tenth of a maximum step. The step ends where the flight does, so the block
+    lands at v0 and rebounds at e v0, e^2 v0, ..., until a rebound is slower than v_rest. A step
+    of maximumTimestep would land it about 20 times faster than it left, with the energy of the
+    penetration it reached, and the bounces would grow."""
+    dt_max, max_pen = 1e-3, 1e-5
+    v_rest = REST_FRACTION * max_pen / dt_max
+    v0 = 5.0 * v_rest
+    mass, inertia, shape = polygon_mass(rectangle(0.1, 0.1))
+    folder = BodyOnFloor(shape, mass, inertia, position=(0.0, -shape[:, 1].min(), 0.0), velocity=(0.0, v0, 0.0),
+                         friction=0.5, restitution=e, dt_max=dt_max, max_penetration=max_pen, history_each_step=True,
+                         break_time=0.05).write(tmp_path / "model")
+    result = simulate(load_model(folder), RunSettings(break_time=0.05))
+    expected = 1 + int(np.floor(np.log(v_rest / v0) / np.log(e)))
+    assert result.state.clock[K.IMPACTS] == expected
+    # each flight is one step, and a sample at a step's start comes before its impact: the samples
+    # moving down are the landings
+    vy = result.u[:, 1]
+    landings = -vy[vy < -1e-3 * v_rest]
+    assert landings == pytest.approx(v0 * e ** np.arange(expected), rel=1e-9)
+    assert np.abs(result.q[:, 2]).max() <= 1e-12  # level

@@ -147,12 +147,13 @@ def test_coarse_steps_reach_the_same_period_2_orbit(tmp_path):
 
 def test_a_block_resting_between_flights_stays_level(tmp_path):
     """At e = 0.45 each flight ends in a chatter of shrinking bounces and a rest on both corners
-    until the table lifts the block off again (1,084 impacts in 3 s). A block resting level
+    until the table lifts the block off again (373 impacts in 3 s, each rebound e times the
+    landing before it). A block resting level
     leaves level: the settling of its two contacts (docs/theory.md §3) must not turn it. It
     stayed level to 10⁻¹⁵ rad with 10⁻⁵ s and 10⁻⁹ m, but with 10⁻⁴ s its tilt grew 5-fold
     every table period from round-off, until a corner struck first at 2 s."""
     result = on_the_table(tmp_path, 1e-4, 1e-7, 3.0, restitution=0.45)
-    assert result.state.clock[K.IMPACTS] > 500
+    assert result.state.clock[K.IMPACTS] > 250
     assert np.abs(result.q[:, 2]).max() < 1e-12
 
 
