@@ -51,7 +51,7 @@ def _project(t, y, model):
     y[n:] = qd
 
 
-@jit
+@jit(entry=True)
 def forward_dopri5(table, nc, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
     """Forward dynamics with the Dormand-Prince 5(4) pair (mbds.kernel.dopri5)."""
     f = _functions(table, nc)
@@ -59,7 +59,7 @@ def forward_dopri5(table, nc, projecting, data, state, t_out, rtol, atol, integ,
                   stop_index)
 
 
-@jit
+@jit(entry=True)
 def forward_stiff(table, nc, projecting, data, state, t_out, rtol, atol, integ, out_y, out_state, stop_index):
     """Forward dynamics with the Rosenbrock 2(3) pair (mbds.kernel.rosenbrock)."""
     f = _functions(table, nc)
@@ -67,7 +67,7 @@ def forward_stiff(table, nc, projecting, data, state, t_out, rtol, atol, integ, 
                         out_state, stop_index)
 
 
-@jit
+@jit(entry=True)
 def post(table, nc, times, Y, states, data, out):
     """DAP_BC's post arrays of the reports (mbds.kernel.dapbc_equations.post)."""
     f = _functions(table, nc)
@@ -75,7 +75,7 @@ def post(table, nc, times, Y, states, data, out):
             times, Y, states, data, out)
 
 
-@jit
+@jit(entry=True)
 def correct(table, nc, q, qd, t, par, functs, tolerance):
     """DAP_BC's initial-condition correction in place; returns the Newton iterations (-1: failed)."""
     return _correct(_functions(table, nc), q, qd, t, par, functs, tolerance)
@@ -90,7 +90,7 @@ def _correct(f, q, qd, t, par, functs, tolerance):
     return iterations
 
 
-@jit
+@jit(entry=True)
 def kinematic_state(table, nc, q, qd, qdd, t, par, functs, tolerance):
     """Kinematic analysis at time t (mbds.kernel.dapbc_equations.kinematic_state)."""
     f = _functions(table, nc)
@@ -98,7 +98,7 @@ def kinematic_state(table, nc, q, qd, qdd, t, par, functs, tolerance):
                               par, functs, tolerance)
 
 
-@jit
+@jit(entry=True)
 def inverse_multipliers(table, nc, t, q, qd, qdd, data, state, lam, D):
     """Inverse dynamics: lam from D^T lam = M qdd - h."""
     f = _functions(table, nc)
@@ -106,7 +106,7 @@ def inverse_multipliers(table, nc, t, q, qd, qdd, data, state, lam, D):
                            lam, D)
 
 
-@jit
+@jit(entry=True)
 def static_equilibrium(table, nc, t, x, data, state, tolerance):
     """Static equilibrium by Newton's method from x = (q, lam)."""
     f = _functions(table, nc)

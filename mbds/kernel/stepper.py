@@ -106,7 +106,7 @@ _MASS_MATRIX, _H_VECTOR, _DEPENDENT_STATE, _DEPENDENT_JACOBIAN, _MECHANICAL_ENER
     function_at(signature) for signature in MODEL_FUNCTIONS.values())
 
 
-@jit(refcount=False)
+@jit(refcount=False, entry=True)
 def advance(functions, model, settings, until, clock, q, u, rng, point_loss, point_interval, history, events, ws):
     """Integrate until time ``until`` (s) or until a buffer fills; return a status.
 

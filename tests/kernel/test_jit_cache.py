@@ -5,7 +5,10 @@ otherwise leave callers running the old callee's code from the cache."""
 from __future__ import annotations
 
 import importlib.util
+import os
 import shutil
+import subprocess
+import sys
 
 from mbds.kernel import jit as kernel_jit
 from mbds.kernel.lcp import lemke
@@ -42,3 +45,56 @@ def test_functions_outside_the_kernel_keep_numbas_own_stamp(tmp_path):
     locator = module.twice._cache._impl.locator
     assert not isinstance(locator, kernel_jit._WholeKernelStamp)
     assert locator.get_source_stamp() != kernel_jit.kernel_source_hash()
+
+
+ENTRY_MODULE = """
+import numpy as np
+from mbds.kernel.jit import jit
+
+
+@jit(refcount=False)
+def _weight(x, k):
+    return (k + 1.0) * x[k]
+
+
+@jit(refcount=False, entry=True)
+def weighted_sum(x):
+    s = 0.0
+    for k in range(x.shape[0]):
+        s += _weight(x, k)
+    return s
+"""
+
+ENTRY_CALL = """
+import sys
+import numpy as np
+sys.path.insert(0, sys.argv[1])
+from entry_module import weighted_sum
+value = weighted_sum(np.arange(5.0))
+library = next(iter(weighted_sum.overloads.values())).library
+print(value, sum(weighted_sum.stats.cache_hits.values()), len(list(library._get_module_for_linking().functions)))
+"""
+
+
+def test_an_entry_function_loads_from_the_cache_without_its_linking_ir(tmp_path):
+    """An ``entry=True`` function (the stepper's driver) is cached without the IR numba keeps for
+    inlining it elsewhere; a new process loads it from the cache, finds its entry point by the
+    stored symbol names, and computes what it computed when compiled (0*1 + 1*2 + 2*3 + 3*4 + 4*5)."""
+    (tmp_path / "entry_module.py").write_text(ENTRY_MODULE)
+    runs = []
+    for _ in range(2):  # the first process compiles and writes the cache, the second loads it
+        done = subprocess.run([sys.executable, "-c", ENTRY_CALL, str(tmp_path)], capture_output=True, text=True,
+                              env={**os.environ, "MBDS_JIT_CACHE": "1"}, check=True)
+        value, hits, functions = done.stdout.split()
+        runs.append((float(value), int(hits), int(functions)))
+    (compiled_value, compiled_hits, compiled_functions), (loaded_value, loaded_hits, loaded_functions) = runs
+    assert compiled_value == loaded_value == 40.0
+    assert compiled_hits == 0 and compiled_functions > 0
+    assert loaded_hits == 1 and loaded_functions == 0
+
+
+def test_the_stepper_driver_is_cached_as_an_entry_function():
+    from mbds.kernel.stepper import advance
+
+    assert isinstance(advance._cache, kernel_jit._EntryCache)
+    assert not isinstance(lemke._cache, kernel_jit._EntryCache)
