@@ -60,13 +60,13 @@ def jit(*args, refcount=True, entry=False, **kwargs):
         options["_nrt"] = False
     options.update(kwargs)
     if args and callable(args[0]) and len(args) == 1:
-        return _entry_cache(numba.njit(**options)(args[0]), entry)
-    return lambda function: _entry_cache(numba.njit(*args, **options)(function), entry)
+        return _entry_cache(numba.njit(**options)(args[0]), entry and options["cache"])
+    return lambda function: _entry_cache(numba.njit(*args, **options)(function), entry and options["cache"])
 
 
 def _entry_cache(dispatcher, entry: bool):
-    """``dispatcher``, caching with :class:`_EntryCache` if ``entry`` and caching is on."""
-    if entry and CACHE:
+    """``dispatcher``, caching with :class:`_EntryCache` if ``entry`` (a cached entry function)."""
+    if entry:
         dispatcher._cache = _EntryCache(dispatcher.py_func)
     return dispatcher
 

@@ -98,3 +98,12 @@ def test_the_stepper_driver_is_cached_as_an_entry_function():
 
     assert isinstance(advance._cache, kernel_jit._EntryCache)
     assert not isinstance(lemke._cache, kernel_jit._EntryCache)
+
+
+def test_an_entry_function_without_the_cache_is_not_cached():
+    @kernel_jit.jit(entry=True, cache=False)
+    def twice(x):
+        return 2.0 * x
+
+    assert twice(1.5) == 3.0
+    assert not isinstance(twice._cache, kernel_jit._EntryCache)
