@@ -59,9 +59,10 @@ def jit(*args, refcount=True, entry=False, **kwargs):
     if not refcount:
         options["_nrt"] = False
     options.update(kwargs)
+    cached_entry = entry and options["cache"]
     if args and callable(args[0]) and len(args) == 1:
-        return _entry_cache(numba.njit(**options)(args[0]), entry and options["cache"])
-    return lambda function: _entry_cache(numba.njit(*args, **options)(function), entry and options["cache"])
+        return _entry_cache(numba.njit(**options)(args[0]), cached_entry)
+    return lambda function: _entry_cache(numba.njit(*args, **options)(function), cached_entry)
 
 
 def _entry_cache(dispatcher, entry: bool):

@@ -278,10 +278,11 @@ def _step_size(model, nc, na, gap, bodies, rows, pb, a1, settings, clock, back):
     dt = reach_limit(model, bodies.motion, settings, bodies.margin, dt)
     rest = rest_velocity(settings)
     for i in range(nc):
-        lifting = closed(gap[i], settings)  # closed and lifting off: its flight ends where it began, not deeper
-        if lifting and rows.gd_n[i] <= rest:
+        touching = closed(gap[i], settings)
+        if touching and rows.gd_n[i] <= rest:  # closed and not lifting off: no limit here
             continue
-        reach = 0.0 if lifting else gap[i] + 0.5 * settings[MAX_PEN]  # open: reach at most half maxPen
+        # open: reach at most half maxPen; closed and lifting off: its flight ends where it began, not deeper
+        reach = 0.0 if touching else gap[i] + 0.5 * settings[MAX_PEN]
         accel = row_dot(rows.WN, i, a1) + rows.wbar_n[i]
         dt = min(dt, _time_to_reach(reach, rows.gd_n[i], accel))
     for a in range(na):  # a sliding contact stops at the end of the step, not beyond
