@@ -4,10 +4,12 @@ mbds.kernel.contact_problem)."""
 
 from __future__ import annotations
 
+from mbds.kernel.active_set import solve_states
 from mbds.kernel.components import split_components
 from mbds.kernel.contact_problem import (
     COMPRESSION,
     EXPANSION,
+    SOLVING,
     build_matrix,
     closed,
     impacts,
@@ -34,18 +36,23 @@ approaching at 3e-8 m/s, and beyond maximumPenetration that held the step at min
 
 @jit(refcount=False)
 def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
-           point_interval, back, events, t, jam):
+           point_interval, back, events, t, jam, present):
     """Compression and expansion LCPs over the closed contacts of each group of coupled contacts
     (mbds.kernel.components) that holds an impacting one (:func:`impacts`); the other groups
     are left to the contact forces of the step. With ``jam``, the groups that hold a contact
     flagged in pb.jammed take an impact without collision instead: their contact-force LCP has
-    no solution (Painlevé's case), and the compression's data are the rates after a maximum step
-    of motion without contact forces (g' + dt_max (W^T M^-1 h + w-bar)), so that its impulse
-    stops the approach that motion would make. Updates u (and the relative velocities
-    rows.gd_n, rows.gd_t), records impulses (N s) and losses (J). Returns False when an LCP
-    failed: velocities are then left unchanged (a compression failed) or a group whose
-    expansion failed keeps those after compression (a plastic impact). A group whose contacts
-    would all rebound slower than the rest velocity expands without normal restitution."""
+    no solution (Painlevé's case). At the present rates the zero impulse solves their
+    compression, so its states are found from the rates after a maximum step of motion without
+    contact forces (g' + dt_max (W^T M^-1 h + w-bar)): which contacts that motion presses, which
+    stick. With ``present`` the impulse is then the one that stops the present rates in those
+    states (:func:`_stop_present_rates`), so a sticking contact is left at rest; without it, or
+    where that point is not a solution of the compression LCP, the impulse is the one that stops
+    the approach of the maximum step, leaving the contacts with rates that cancel that motion.
+    Updates u (and the relative velocities rows.gd_n, rows.gd_t), records impulses (N s) and
+    losses (J). Returns False when an LCP failed: velocities are then left unchanged (a
+    compression failed) or a group whose expansion failed keeps those after compression (a
+    plastic impact). A group whose contacts would all rebound slower than the rest velocity
+    expands without normal restitution."""
     active, group, laws, gd_n, gd_t = pb.active, pb.group, rows.laws, rows.gd_n, rows.gd_t
     WN, WT, YN, YT = rows.WN, rows.WT, dyn.YN, dyn.YT
     imp_n, imp_t, gam_n, gam_t = forces.imp_n, forces.imp_t, forces.gam_n, forces.gam_t
@@ -81,6 +88,8 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
         if not solve(3 * k, at, part, k, k, COMPRESSION, s, contacts, pb, settings, tol_lex, events, t):
             return False
         tangential_forces(part, k, pb.stick, pb.sign, laws, z, imp_n, imp_t)
+        if jam and present and _stop_present_rates(part, k, s, at, pb, rows, settings, tol_lex):
+            tangential_forces(part, k, pb.stick, pb.sign, laws, z, imp_n, imp_t)
         at += 9 * k * k
     keep_states(pb, COMPRESSION, na)
     _apply_impulses(active, na, imp_n, imp_t, YN, YT, u)
@@ -163,6 +172,25 @@ def impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, mod
     clock[LOST] += lost
     clock[DRIVE_WORK] += drive
     return expanded
+
+
+@jit(refcount=False)
+def _stop_present_rates(part, k, s, at, pb, rows, settings, tol_lex):
+    """The compression LCP of the jammed group ``part`` (k contacts, all stick candidates; its
+    matrix at pb.A_flat[at:], the states of its look-ahead solution in memory slot SOLVING from row
+    s on) for the present rates (g_N', g_T', 0), solved in those states alone: True when that
+    point is a solution (in pb.z), which then stops the present rates of the contacts the
+    look-ahead pressed (a sticking one is left with g_N' = g_T' = 0). The zero impulse solves
+    the same LCP; this is the other solution, the one the look-ahead selects."""
+    m = 3 * k
+    for a in range(k):
+        c = part[a]
+        pb.state[a] = pb.memory[SOLVING, s + a, 2]
+        pb.bvec[a] = rows.gd_n[c]
+        pb.bvec[k + a] = rows.gd_t[c]
+        pb.bvec[2 * k + a] = 0.0
+    return solve_states(pb.A_flat[at : at + m * m].reshape((m, m)), pb.bvec[:m], pb.z[:m], pb.w[:m], k, k, pb.hrow,
+                        pb.state, 0, settings[PIVOT_MAX], tol_lex, int(settings[MAX_PIVOTS]), pb.fwork, pb.iwork)
 
 
 @jit(refcount=False)

@@ -218,7 +218,7 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
         solved = True
         if impacting:
             solved = impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model,
-                            point_loss, point_interval, back, events, t, False)
+                            point_loss, point_interval, back, events, t, False, False)
             _after_impulses(dependent_state, dependent_jacobian, mass_matrix, h_vector, contact_law, model, q, u, t,
                             nc, point_interval, events, bodies, contacts, rows, dyn)
         # --- 5: forces between impacts
@@ -236,9 +236,13 @@ def advance(functions, model, settings, until, clock, q, u, rng, point_loss, poi
                 clock[DT] = max(0.5 * clock[DT], settings[DT_MIN])
                 back.tracked[0] = 0
                 continue
-            if not forces_ok:  # no contact forces continue the motion: an impact without collision
+            # no contact forces continue the motion: an impact without collision that stops the present rates,
+            # and where forces still fail after it, one that stops the approach of a maximum step
+            for present in (True, False):
+                if forces_ok:
+                    break
                 impact(nc, contacts, rows, dyn, pb, forces, u, settings, tol_lex, clock, model, point_loss,
-                       point_interval, back, events, t, True)
+                       point_interval, back, events, t, True, present)
                 _after_impulses(dependent_state, dependent_jacobian, mass_matrix, h_vector, contact_law, model, q, u,
                                 t, nc, point_interval, events, bodies, contacts, rows, dyn)
                 impacting = True
